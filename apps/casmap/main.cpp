@@ -1,0 +1,40 @@
+// casmap: one CLI with subcommands wiring scenes, simulator, rigs, mapper, filters and drivers.
+// Exit status: 0 success, 2 bad input (one line naming file, field and rule), 1 anything else.
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "apps/casmap/commands.hpp"
+#include "core/input_error.hpp"
+
+namespace casmap::app {
+// Declarations of the subcommands (defined in *_command.cpp).
+// BEGIN COMMAND DECLARATIONS
+// END COMMAND DECLARATIONS
+}  // namespace casmap::app
+
+int main(int argc, char** argv) {
+    using namespace casmap::app;
+    CLI::App app{"casmap: terrain mapping with 2-D laser rangefinders and the CAS filter"};
+    app.require_subcommand(1);
+    CommonOptions common;
+    // BEGIN COMMAND REGISTRATION
+    // END COMMAND REGISTRATION
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "casmap: %s\n", e.what());
+        return 2;
+    } catch (const casmap::InputError& e) {
+        std::fprintf(stderr, "casmap: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "casmap: error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,42 @@
+# find_package() only for what the enabled modules need.
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+find_package(Threads REQUIRED)
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs)
+find_package(yaml-cpp REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(HDF5 REQUIRED COMPONENTS C)
+
+# HDF5's C API as one imported target.
+if(NOT TARGET casmap::hdf5)
+    add_library(casmap::hdf5 INTERFACE IMPORTED)
+    target_include_directories(casmap::hdf5 INTERFACE ${HDF5_INCLUDE_DIRS})
+    target_link_libraries(casmap::hdf5 INTERFACE ${HDF5_C_LIBRARIES})
+    target_compile_definitions(casmap::hdf5 INTERFACE ${HDF5_DEFINITIONS})
+endif()
+
+# yaml-cpp 0.7 on Debian 12 exports target "yaml-cpp".
+if(NOT TARGET yaml-cpp::yaml-cpp)
+    add_library(yaml-cpp::yaml-cpp INTERFACE IMPORTED)
+    target_link_libraries(yaml-cpp::yaml-cpp INTERFACE yaml-cpp)
+endif()
+
+if(CASMAP_BUILD_SIM)
+    find_package(embree 3 REQUIRED)
+    find_package(assimp REQUIRED)
+    find_package(Bullet REQUIRED)
+    # Bullet ships variables only: wrap them once. Debian builds Bullet in single precision.
+    if(NOT TARGET casmap::bullet)
+        add_library(casmap::bullet INTERFACE IMPORTED)
+        target_include_directories(casmap::bullet SYSTEM INTERFACE ${BULLET_INCLUDE_DIRS})
+        target_link_libraries(casmap::bullet INTERFACE ${BULLET_LIBRARIES})
+        target_compile_definitions(casmap::bullet INTERFACE ${BULLET_DEFINITIONS})
+    endif()
+endif()
+
+if(CASMAP_BUILD_TESTS)
+    find_package(GTest REQUIRED)
+    include(GoogleTest)
+endif()
+if(CASMAP_BUILD_BENCHMARKS)
+    find_package(benchmark REQUIRED)
+endif()

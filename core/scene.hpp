@@ -1,0 +1,47 @@
+#pragma once
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/pose.hpp"
+
+namespace casmap::core {
+
+/// Axis-aligned box in its own frame, centred on its pose (like URDF/SDF).
+struct BoxShape {
+    Eigen::Vector3d size_m = Eigen::Vector3d::Ones();
+};
+
+/// Cylinder with its axis along its own z, centred on its pose.
+struct CylinderShape {
+    double radius_m = 0.5;
+    double height_m = 1.0;
+};
+
+/// Triangle mesh in its own frame, already scaled to metres.
+struct MeshShape {
+    std::string source_path;  // where it came from, for messages
+    std::vector<Eigen::Vector3f> vertices;
+    std::vector<Eigen::Vector3i> triangles;
+};
+
+using Shape = std::variant<BoxShape, CylinderShape, MeshShape>;
+
+struct SceneObject {
+    std::string name;
+    Shape shape;
+    Pose world_T_object;
+    double reflectivity = 0.5;  // diffuse reflectance at 905 nm, 0..1
+    bool terrain = false;        // drivable ground for the vehicle rig
+};
+
+/// A scene as plain data: what io loads from YAML and sim turns into an Embree world.
+struct Scene {
+    std::string source_path;
+    std::vector<SceneObject> objects;
+};
+
+}  // namespace casmap::core

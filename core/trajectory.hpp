@@ -1,0 +1,37 @@
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "core/pose.hpp"
+
+namespace casmap::core {
+
+struct TimedPose {
+    double stamp_s = 0.0;
+    Pose world_T_sensor;
+};
+
+/// Timed sensor poses, strictly increasing in time. Poses between samples are interpolated
+/// (linear in position, slerp in orientation); outside [StartTime, EndTime] there is none.
+class Trajectory {
+public:
+    Trajectory() = default;
+    /// Throws InputError if the stamps are not strictly increasing or not finite.
+    explicit Trajectory(std::vector<TimedPose> samples);
+
+    [[nodiscard]] std::optional<Pose> PoseAt(double stamp_s) const;
+    [[nodiscard]] bool empty() const { return samples_.empty(); }
+    [[nodiscard]] std::size_t size() const { return samples_.size(); }
+    [[nodiscard]] double StartTime() const { return samples_.front().stamp_s; }
+    [[nodiscard]] double EndTime() const { return samples_.back().stamp_s; }
+    [[nodiscard]] const std::vector<TimedPose>& samples() const { return samples_; }
+
+private:
+    std::vector<TimedPose> samples_;
+};
+
+/// Interpolates between two poses, t in [0, 1].
+[[nodiscard]] Pose Interpolate(const Pose& a, const Pose& b, double t);
+
+}  // namespace casmap::core

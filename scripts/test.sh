@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs the dependencies, builds casmap with tests and benchmarks, and runs the whole suite:
+# the full build, then the robot build without the simulator (-DCASMAP_BUILD_SIM=OFF).
+# Idempotent; run from anywhere, as root or as a user with sudo.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/install-deps.sh
+jobs=$(nproc)
+
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCASMAP_BUILD_TESTS=ON \
+    -DCASMAP_BUILD_BENCHMARKS=ON -DCASMAP_WERROR=ON
+cmake --build build -j "$jobs"
+ctest --test-dir build --output-on-failure -j "$jobs" --timeout 300
+
+cmake -S . -B build-nosim -G Ninja -DCMAKE_BUILD_TYPE=Release -DCASMAP_BUILD_SIM=OFF \
+    -DCASMAP_BUILD_TESTS=ON -DCASMAP_WERROR=ON
+cmake --build build-nosim -j "$jobs"
+ctest --test-dir build-nosim --output-on-failure -j "$jobs" --timeout 300
+
+if [ -x scripts/fuzz.sh ]; then
+    bash scripts/fuzz.sh
+fi
