@@ -1,0 +1,54 @@
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <span>
+
+#include <Eigen/Core>
+
+#include "core/scene.hpp"
+
+namespace casmap::sim {
+
+/// One ray in world coordinates. `direction` must be unit length.
+struct Ray {
+    Eigen::Vector3f origin = Eigen::Vector3f::Zero();
+    Eigen::Vector3f direction = Eigen::Vector3f::UnitX();
+    float tmax_m = std::numeric_limits<float>::infinity();
+};
+
+/// What one ray hit. `distance_m` is +inf for a miss (then the other fields are unset).
+struct Hit {
+    float distance_m = std::numeric_limits<float>::infinity();
+    Eigen::Vector3f normal = Eigen::Vector3f::Zero();  // unit, world frame, facing the ray
+    float reflectivity = 0.0F;                         // of the object hit, 0..1
+    std::uint32_t object_id = std::numeric_limits<std::uint32_t>::max();  // index in Scene
+
+    [[nodiscard]] bool valid() const { return distance_m < std::numeric_limits<float>::infinity(); }
+};
+
+/// An Embree 3 scene built from a core::Scene (boxes and cylinders tessellated or as exact
+/// geometry, meshes as triangles). The only place Embree appears is world.cpp.
+/// Thread-safe for concurrent casts after construction.
+class World {
+public:
+    /// Throws InputError naming the object if a shape cannot be built.
+    explicit World(const core::Scene& scene);
+    ~World();
+    World(World&&) noexcept;
+    World& operator=(World&&) noexcept;
+    World(const World&) = delete;
+    World& operator=(const World&) = delete;
+
+    /// Casts rays.size() rays (hits.size() must equal it) as Embree packets of up to 16 rays.
+    void CastPacket(std::span<const Ray> rays, std::span<Hit> hits) const;
+    /// Casts one ray with rtcIntersect1 (the reference for benchmarks and tests).
+    [[nodiscard]] Hit CastOne(const Ray& ray) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace casmap::sim
