@@ -14,8 +14,8 @@ void GridGeometry::Validate() const {
         throw MakeInputError("grid", "cell_m", std::to_string(cell_m), "must be > 0");
     }
     if (rows <= 0 || cols <= 0) {
-        throw MakeInputError("grid", "rows/cols",
-                             std::to_string(rows) + "," + std::to_string(cols), "must be > 0");
+        throw MakeInputError("grid", "rows/cols", std::to_string(rows) + "," + std::to_string(cols),
+                             "must be > 0");
     }
 }
 

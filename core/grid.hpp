@@ -48,7 +48,8 @@ struct Raster {
 
     Raster() = default;
     Raster(int rows_, int cols_, T fill = T{})
-        : rows(rows_), cols(cols_),
+        : rows(rows_),
+          cols(cols_),
           data(static_cast<std::size_t>(rows_) * static_cast<std::size_t>(cols_), fill) {}
 
     [[nodiscard]] T& at(int r, int c) {

@@ -9,13 +9,20 @@ namespace {
 // 8187 S/N too small, 8186 read error, 8183 value > max.
 constexpr std::uint16_t OffsetOf(BeamStatus status) {
     switch (status) {
-        case BeamStatus::kNoReturn: return 0;
-        case BeamStatus::kDazzle: return 1;
-        case BeamStatus::kOverflow: return 2;
-        case BeamStatus::kLowSignal: return 4;
-        case BeamStatus::kReadError: return 5;
-        case BeamStatus::kOutOfRange: return 8;
-        case BeamStatus::kOk: break;
+        case BeamStatus::kNoReturn:
+            return 0;
+        case BeamStatus::kDazzle:
+            return 1;
+        case BeamStatus::kOverflow:
+            return 2;
+        case BeamStatus::kLowSignal:
+            return 4;
+        case BeamStatus::kReadError:
+            return 5;
+        case BeamStatus::kOutOfRange:
+            return 8;
+        case BeamStatus::kOk:
+            break;
     }
     return 0;
 }
@@ -23,9 +30,12 @@ constexpr std::uint16_t OffsetOf(BeamStatus status) {
 
 int Lms200Format::ValueBits() const {
     switch (mode) {
-        case RangeMode::k8m: return 13;
-        case RangeMode::k16m: return 14;
-        case RangeMode::k32m: return 15;
+        case RangeMode::k8m:
+            return 13;
+        case RangeMode::k16m:
+            return 14;
+        case RangeMode::k32m:
+            return 15;
     }
     return 13;
 }
@@ -52,9 +62,9 @@ Beam Lms200Format::Decode(std::uint16_t raw) const {
         return beam;
     }
     beam.status = BeamStatus::kNoReturn;  // unlisted codes in the special band: not valid
-    for (const BeamStatus s : {BeamStatus::kNoReturn, BeamStatus::kDazzle, BeamStatus::kOverflow,
-                               BeamStatus::kLowSignal, BeamStatus::kReadError,
-                               BeamStatus::kOutOfRange}) {
+    for (const BeamStatus s :
+         {BeamStatus::kNoReturn, BeamStatus::kDazzle, BeamStatus::kOverflow, BeamStatus::kLowSignal,
+          BeamStatus::kReadError, BeamStatus::kOutOfRange}) {
         if (value == CodeFor(s)) {
             beam.status = s;
         }

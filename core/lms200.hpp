@@ -16,7 +16,7 @@ struct Lms200Format {
     RangeMode mode = RangeMode::k8m;
     RangeUnits units = RangeUnits::kMillimetre;
 
-    [[nodiscard]] int ValueBits() const;          // 13, 14 or 15
+    [[nodiscard]] int ValueBits() const;            // 13, 14 or 15
     [[nodiscard]] std::uint16_t ValueMask() const;  // 0x1FFF, 0x3FFF, 0x7FFF
     [[nodiscard]] double UnitM() const { return units == RangeUnits::kMillimetre ? 0.001 : 0.01; }
     /// Largest valid range the mode can report (m): the first special code minus one unit.

@@ -30,7 +30,9 @@ struct Pose {
 };
 
 /// Rotation R = Rz(yaw) Ry(pitch) Rx(roll), angles in radians.
-[[nodiscard]] Eigen::Quaterniond QuaternionFromRpy(double roll_rad, double pitch_rad, double yaw_rad);
+[[nodiscard]] Eigen::Quaterniond QuaternionFromRpy(double roll_rad,
+                                                   double pitch_rad,
+                                                   double yaw_rad);
 
 /// Inverse of QuaternionFromRpy: (roll, pitch, yaw) in radians, pitch in [-pi/2, pi/2].
 [[nodiscard]] Eigen::Vector3d RpyFromQuaternion(const Eigen::Quaterniond& q);

@@ -40,7 +40,8 @@ void Progress::Draw(bool force) {
     }
     last_draw_ = now;
     constexpr int kWidth = 30;
-    const double fraction = total_ == 0 ? 1.0 : static_cast<double>(done_) / static_cast<double>(total_);
+    const double fraction =
+        total_ == 0 ? 1.0 : static_cast<double>(done_) / static_cast<double>(total_);
     const int filled = static_cast<int>(fraction * kWidth);
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     std::fprintf(stderr, "\r%s [%.*s%*s] %zu/%zu %5.1fs", label_.c_str(), filled,

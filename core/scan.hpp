@@ -11,13 +11,13 @@ namespace casmap::core {
 /// What the scanner reported for one beam. Mirrors the LMS 200's special codes
 /// (telegram listing p.124; see shared/reference/lms200_protocol.md and core/lms200.hpp).
 enum class BeamStatus : std::uint8_t {
-    kOk = 0,            // a valid range
-    kNoReturn = 1,      // 8191: not valid / no echo
-    kDazzle = 2,        // 8190: dazzled
-    kOverflow = 3,      // 8189: operation overflow
-    kLowSignal = 4,     // 8187: S/N too small
-    kReadError = 5,     // 8186: channel-1 read error
-    kOutOfRange = 6,    // 8183: value > maximum of the range mode
+    kOk = 0,          // a valid range
+    kNoReturn = 1,    // 8191: not valid / no echo
+    kDazzle = 2,      // 8190: dazzled
+    kOverflow = 3,    // 8189: operation overflow
+    kLowSignal = 4,   // 8187: S/N too small
+    kReadError = 5,   // 8186: channel-1 read error
+    kOutOfRange = 6,  // 8183: value > maximum of the range mode
 };
 inline constexpr int kBeamStatusCount = 7;
 
@@ -45,7 +45,7 @@ struct Scan {
     double stamp_s = 0.0;          // time of beam 0
     double start_angle_rad = 0.0;  // sensor frame, counter-clockwise from +x
     double angle_step_rad = 0.0;
-    double beam_period_s = 0.0;    // lets the mapper undo motion during a sweep
+    double beam_period_s = 0.0;              // lets the mapper undo motion during a sweep
     std::vector<double> beam_time_offset_s;  // optional per-beam offsets (interleaved modes)
     std::vector<Beam> beams;
 

@@ -1,10 +1,9 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <variant>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "core/pose.hpp"
 
@@ -35,7 +34,7 @@ struct SceneObject {
     Shape shape;
     Pose world_T_object;
     double reflectivity = 0.5;  // diffuse reflectance at 905 nm, 0..1
-    bool terrain = false;        // drivable ground for the vehicle rig
+    bool terrain = false;       // drivable ground for the vehicle rig
 };
 
 /// A scene as plain data: what io loads from YAML and sim turns into an Embree world.

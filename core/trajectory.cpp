@@ -32,9 +32,9 @@ std::optional<Pose> Trajectory::PoseAt(double stamp_s) const {
         stamp_s > samples_.back().stamp_s) {
         return std::nullopt;
     }
-    const auto after = std::upper_bound(
-        samples_.begin(), samples_.end(), stamp_s,
-        [](double t, const TimedPose& sample) { return t < sample.stamp_s; });
+    const auto after =
+        std::upper_bound(samples_.begin(), samples_.end(), stamp_s,
+                         [](double t, const TimedPose& sample) { return t < sample.stamp_s; });
     if (after == samples_.end()) {
         return samples_.back().world_T_sensor;
     }

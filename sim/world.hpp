@@ -1,11 +1,10 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <limits>
 #include <memory>
 #include <span>
-
-#include <Eigen/Core>
 
 #include "core/scene.hpp"
 

@@ -1,8 +1,8 @@
 #include "core/grid.hpp"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "core/input_error.hpp"
 

@@ -1,9 +1,9 @@
 #include "core/parallel.hpp"
 
+#include <gtest/gtest.h>
+
 #include <stdexcept>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 namespace casmap::core {
 namespace {

@@ -1,9 +1,9 @@
 #include "core/trajectory.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numbers>
-
-#include <gtest/gtest.h>
 
 #include "core/input_error.hpp"
 
