@@ -1,0 +1,218 @@
+#include "io/scene_file.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <variant>
+
+#include "core/input_error.hpp"
+#include "io/mesh_import.hpp"
+
+namespace casmap::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kMeshDir = fs::path(CASMAP_SOURCE_DIR) / "tests/data/meshes";
+
+// A fresh directory per test holding scene.yaml (and copies of meshes when asked).
+class SceneFileTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               ("casmap_scene_" + std::to_string(getpid()) + "_" + info->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_ / "meshes");
+        for (const char* name : {"box.stl", "cylinder.obj", "plane.ply"}) {
+            fs::copy_file(kMeshDir / name, dir_ / "meshes" / name);
+        }
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    std::string Write(const std::string& yaml) {
+        const fs::path path = dir_ / "scene.yaml";
+        std::ofstream(path) << yaml;
+        return path.string();
+    }
+    // Loads `yaml` expecting an InputError and returns its message.
+    std::string ErrorOf(const std::string& yaml) {
+        const std::string path = Write(yaml);
+        try {
+            (void)LoadScene(path);
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        ADD_FAILURE() << "no InputError for:\n" << yaml;
+        return "";
+    }
+
+    fs::path dir_;
+};
+
+TEST_F(SceneFileTest, LoadsShapesPosesAndDefaults) {
+    const core::Scene scene = LoadScene(Write(R"(objects:
+  - name: floor
+    box: {size_m: [8.0, 6.0, 0.02]}
+    pose: {xyz_m: [2.0, 0.0, -0.01], rpy_deg: [0, 0, 0]}
+    reflectivity: 0.4
+    terrain: true
+  - name: pole1
+    cylinder: {radius_m: 0.012, height_m: 0.914}
+    pose: [3.0, 0.5, 0.457, 0, 0, 90]
+  - name: rock
+    mesh: meshes/box.stl
+    scale: 0.001
+    pose: {xyz_m: [2.5, -0.4, 0.0]}
+)"));
+    ASSERT_EQ(scene.objects.size(), 3U);
+    const core::SceneObject& floor = scene.objects[0];
+    EXPECT_EQ(floor.name, "floor");
+    EXPECT_TRUE(floor.terrain);
+    EXPECT_DOUBLE_EQ(floor.reflectivity, 0.4);
+    EXPECT_TRUE(std::get<core::BoxShape>(floor.shape).size_m.isApprox(Eigen::Vector3d(8, 6, 0.02)));
+    EXPECT_DOUBLE_EQ(floor.world_T_object.translation.z(), -0.01);
+
+    const core::SceneObject& pole = scene.objects[1];
+    EXPECT_FALSE(pole.terrain);
+    EXPECT_DOUBLE_EQ(pole.reflectivity, 0.5);  // the documented default
+    EXPECT_DOUBLE_EQ(std::get<core::CylinderShape>(pole.shape).radius_m, 0.012);
+    // yaw 90 deg maps object +x to world +y
+    const Eigen::Vector3d x_world = pole.world_T_object.rotation * Eigen::Vector3d::UnitX();
+    EXPECT_NEAR(x_world.y(), 1.0, 1e-12);
+
+    const auto& mesh = std::get<core::MeshShape>(scene.objects[2].shape);
+    EXPECT_EQ(mesh.triangles.size(), 12U);
+    EXPECT_NEAR(mesh.vertices[0].cwiseAbs().maxCoeff(), 0.2, 1e-6);  // 200 mm -> 0.2 m
+    EXPECT_TRUE(scene.objects[2].world_T_object.rotation.isApprox(Eigen::Quaterniond::Identity()));
+}
+
+TEST_F(SceneFileTest, PerAxisScale) {
+    const core::Scene scene = LoadScene(Write(R"(objects:
+  - name: box
+    mesh: meshes/box.stl
+    scale: [0.001, 0.002, 0.003]
+)"));
+    const auto& mesh = std::get<core::MeshShape>(scene.objects[0].shape);
+    Eigen::Vector3f max = Eigen::Vector3f::Constant(-1e9F);
+    for (const Eigen::Vector3f& v : mesh.vertices) {
+        max = max.cwiseMax(v);
+    }
+    EXPECT_TRUE(max.isApprox(Eigen::Vector3f(0.2F, 0.3F, 0.3F), 1e-6F)) << max.transpose();
+}
+
+TEST(MeshImport, ReadsStlObjPlyWithTheSameTriangles) {
+    struct Case {
+        const char* stem;
+        std::size_t triangles;
+    };
+    for (const Case c : {Case{"plane", 2}, Case{"box", 12}, Case{"cylinder", 384}}) {
+        for (const char* ext : {".stl", ".obj", ".ply"}) {
+            const fs::path path = kMeshDir / (std::string(c.stem) + ext);
+            const core::MeshShape mesh = ImportMesh(path, Eigen::Vector3d::Constant(0.001));
+            EXPECT_EQ(mesh.triangles.size(), c.triangles) << path;
+            for (const Eigen::Vector3i& t : mesh.triangles) {
+                ASSERT_TRUE((t.array() >= 0).all() &&
+                            (t.array() < static_cast<int>(mesh.vertices.size())).all());
+            }
+        }
+    }
+    EXPECT_EQ(ImportMesh(kMeshDir / "box_ascii.stl", Eigen::Vector3d::Ones()).triangles.size(),
+              12U);
+}
+
+TEST_F(SceneFileTest, RejectsReflectivityOutsideZeroToOneWithLineAndField) {
+    const std::string message = ErrorOf(R"(objects:
+  - name: a
+    box: {size_m: [1, 1, 1]}
+  - name: b
+    box: {size_m: [1, 1, 1]}
+  - name: c
+    box: {size_m: [1, 1, 1]}
+    reflectivity: 1.4
+)");
+    EXPECT_EQ(message, (dir_ / "scene.yaml").string() +
+                           ":8:19: objects[2].reflectivity = 1.4 (allowed: 0..1)");
+}
+
+TEST_F(SceneFileTest, RejectsUnknownKeys) {
+    EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, 1, 1]}\n    colour: red\n"),
+                ::testing::HasSubstr("scene.yaml:4:5: objects[0].colour (unknown key"));
+    EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, 1, 1], sise: 2}\n"),
+                ::testing::HasSubstr("objects[0].box.sise (unknown key"));
+    EXPECT_THAT(ErrorOf("object:\n  - name: a\n"),
+                ::testing::HasSubstr("scene.yaml:1:1: object (unknown key"));
+    EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, 1, 1]}\n"
+                        "    pose: {xyz: [0, 0, 0]}\n"),
+                ::testing::HasSubstr("objects[0].pose.xyz (unknown key"));
+}
+
+TEST_F(SceneFileTest, RejectsBadMeshes) {
+    EXPECT_THAT(ErrorOf("objects:\n  - name: m\n    mesh: meshes/nothere.stl\n"),
+                ::testing::HasSubstr("scene.yaml:3:11: objects[0].mesh = meshes/nothere.stl "
+                                     "(file not found"));
+    fs::copy_file(kMeshDir / "empty.stl", dir_ / "meshes/empty.stl");
+    fs::copy_file(kMeshDir / "garbage.ply", dir_ / "meshes/garbage.ply");
+    EXPECT_THAT(ErrorOf("objects:\n  - name: m\n    mesh: meshes/empty.stl\n"),
+                ::testing::HasSubstr("scene.yaml:3:11: objects[0].mesh = meshes/empty.stl"));
+    EXPECT_THAT(ErrorOf("objects:\n  - name: m\n    mesh: meshes/garbage.ply\n"),
+                ::testing::HasSubstr("scene.yaml:3:11: objects[0].mesh = meshes/garbage.ply"));
+    EXPECT_THAT(ErrorOf("objects:\n  - name: m\n    mesh: meshes/box.stl\n    scale: -1\n"),
+                ::testing::HasSubstr("scene.yaml:4:12: objects[0].scale = -1 (allowed: > 0)"));
+}
+
+TEST_F(SceneFileTest, RejectsNonPositiveSizes) {
+    EXPECT_THAT(
+        ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, -2, 1]}\n"),
+        ::testing::HasSubstr("scene.yaml:3:23: objects[0].box.size_m[1] = -2 (allowed: > 0)"));
+    EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    cylinder: {radius_m: 0, height_m: 1}\n"),
+                ::testing::HasSubstr("objects[0].cylinder.radius_m = 0 (allowed: > 0)"));
+    EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    cylinder: {radius_m: 1}\n"),
+                ::testing::HasSubstr("objects[0].cylinder.height_m (required key is missing)"));
+    EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, 1]}\n"),
+                ::testing::HasSubstr("objects[0].box.size_m = [1, 1] (must be a list of 3"));
+    EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, .nan, 1]}\n"),
+                ::testing::HasSubstr("objects[0].box.size_m[1] = .nan (must be finite)"));
+}
+
+TEST_F(SceneFileTest, RejectsPosesThatAreNotSixNumbers) {
+    const std::string box = "objects:\n  - name: a\n    box: {size_m: [1, 1, 1]}\n";
+    EXPECT_THAT(ErrorOf(box + "    pose: [1, 2, 3, 4, 5]\n"),
+                ::testing::HasSubstr(
+                    "scene.yaml:4:11: objects[0].pose = [1, 2, 3, 4, 5] (must be a list of 6"));
+    EXPECT_THAT(ErrorOf(box + "    pose: {xyz_m: [1, 2, 3], rpy_deg: [0, 0]}\n"),
+                ::testing::HasSubstr("objects[0].pose.rpy_deg = [0, 0] (must be a list of 3"));
+    EXPECT_THAT(ErrorOf(box + "    pose: {xyz_m: [1, x, 3]}\n"),
+                ::testing::HasSubstr("objects[0].pose.xyz_m[1] = x (must be a number)"));
+    EXPECT_THAT(ErrorOf(box + "    pose: 3\n"), ::testing::HasSubstr("objects[0].pose = 3"));
+}
+
+TEST_F(SceneFileTest, RejectsStructuralMistakes) {
+    EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, 1, 1]}\n"
+                        "    cylinder: {radius_m: 1, height_m: 1}\n"),
+                ::testing::HasSubstr("objects[0] = a (needs exactly one of box, cylinder, mesh)"));
+    EXPECT_THAT(ErrorOf("objects:\n  - box: {size_m: [1, 1, 1]}\n"),
+                ::testing::HasSubstr("objects[0].name (required key is missing)"));
+    EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, 1, 1]}\n"
+                        "  - name: a\n    box: {size_m: [1, 1, 1]}\n"),
+                ::testing::HasSubstr("scene.yaml:4:11: objects[1].name = a (duplicate name)"));
+    EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, 1, 1]}\n    scale: 2\n"),
+                ::testing::HasSubstr("objects[0].scale = 2 (only allowed with mesh)"));
+    EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, 1, 1]}\n    terrain: 3\n"),
+                ::testing::HasSubstr("objects[0].terrain = 3 (wrong type)"));
+    EXPECT_THAT(ErrorOf("objects: []\n"),
+                ::testing::HasSubstr("objects = [] (must be a non-empty"));
+    EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    box: [1, 1, 1]\n"),
+                ::testing::HasSubstr("objects[0].box (must be a mapping)"));
+}
+
+TEST(SceneFile, MissingFileIsAnInputError) {
+    EXPECT_THROW((void)LoadScene("/nonexistent/scene.yaml"), InputError);
+}
+
+}  // namespace
+}  // namespace casmap::io
