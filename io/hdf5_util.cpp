@@ -1,0 +1,388 @@
+#include "io/hdf5_util.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <stdexcept>
+
+namespace casmap::io::h5 {
+namespace {
+
+std::string ShapeText(const std::vector<hsize_t>& dims) {
+    std::string text;
+    for (std::size_t i = 0; i < dims.size(); ++i) {
+        text += (i == 0 ? "" : " x ") + std::to_string(dims[i]);
+    }
+    return dims.empty() ? "scalar" : text;
+}
+
+std::string ClassName(H5T_class_t c) {
+    switch (c) {
+        case H5T_INTEGER:
+            return "integer";
+        case H5T_FLOAT:
+            return "float";
+        case H5T_STRING:
+            return "string";
+        default:
+            return "type class " + std::to_string(static_cast<int>(c));
+    }
+}
+
+// Object creation properties shared by groups and datasets: no access/modification times, so
+// the same content gives the same bytes.
+void NoTimes(hid_t plist) { Check(H5Pset_obj_track_times(plist, false), "H5Pset_obj_track_times"); }
+
+Id ScalarSpace() { return Check(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate"); }
+
+Id Utf8StringType() {
+    Id type = Check(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy");
+    Check(H5Tset_size(type.get(), H5T_VARIABLE), "H5Tset_size");
+    Check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "H5Tset_cset");
+    return type;
+}
+
+void WriteAttributeRaw(hid_t object,
+                       const std::string& name,
+                       hid_t file_type,
+                       hid_t memory_type,
+                       hid_t space,
+                       const void* data) {
+    const Id acpl = Check(H5Pcreate(H5P_ATTRIBUTE_CREATE), H5Pclose, "H5Pcreate");
+    const Id attr =
+        Check(H5Acreate2(object, name.c_str(), file_type, space, acpl.get(), H5P_DEFAULT), H5Aclose,
+              "H5Acreate2 " + name);
+    Check(H5Awrite(attr.get(), memory_type, data), "H5Awrite " + name);
+}
+
+}  // namespace
+
+std::string AttributeWhere(const std::string& object, const std::string& name) {
+    return object + " attribute " + name;
+}
+
+std::unique_lock<std::mutex> LibraryLock() {
+    static std::mutex mutex;
+    static std::once_flag silence;
+    std::unique_lock<std::mutex> lock(mutex);
+    std::call_once(silence, [] { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); });
+    return lock;
+}
+
+Id& Id::operator=(Id&& o) noexcept {
+    if (this != &o) {
+        Reset();
+        id_ = o.id_;
+        close_ = o.close_;
+        o.id_ = H5I_INVALID_HID;
+    }
+    return *this;
+}
+
+void Id::Reset() {
+    if (id_ >= 0 && close_ != nullptr) {
+        close_(id_);
+    }
+    id_ = H5I_INVALID_HID;
+}
+
+Id Check(hid_t id, Id::CloseFn close, const std::string& what) {
+    if (id < 0) {
+        throw std::runtime_error("HDF5 call failed: " + what);
+    }
+    return Id(id, close);
+}
+
+void Check(herr_t status, const std::string& what) {
+    if (status < 0) {
+        throw std::runtime_error("HDF5 call failed: " + what);
+    }
+}
+
+Id CreateFile(const std::string& path) {
+    const Id fcpl = Check(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "H5Pcreate");
+    NoTimes(fcpl.get());  // the root group
+    const Id fapl = Check(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate");
+    Check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), "H5Pset_fclose_degree");
+    Check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_EARLIEST, H5F_LIBVER_V18),
+          "H5Pset_libver_bounds");
+    return Check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()), H5Fclose,
+                 "H5Fcreate " + path);
+}
+
+Id CreateGroup(hid_t parent, const std::string& name) {
+    const Id gcpl = Check(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, "H5Pcreate");
+    NoTimes(gcpl.get());
+    return Check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT), H5Gclose,
+                 "H5Gcreate2 " + name);
+}
+
+void WriteDataset(hid_t parent,
+                  const std::string& name,
+                  hid_t file_type,
+                  hid_t memory_type,
+                  const std::vector<hsize_t>& dims,
+                  const void* data) {
+    const Id space = Check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+                           H5Sclose, "H5Screate_simple " + name);
+    const Id dcpl = Check(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "H5Pcreate");
+    NoTimes(dcpl.get());
+    hsize_t count = 1;
+    for (const hsize_t d : dims) {
+        count *= d;
+    }
+    // Chunk whole rows, about 256 KiB per chunk; small datasets stay contiguous.
+    const std::size_t element = H5Tget_size(file_type);
+    if (count >= 1024 && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
+        std::vector<hsize_t> chunk = dims;
+        const hsize_t row_bytes = (dims.size() > 1 ? dims[1] : 1) * element;
+        chunk[0] = std::clamp<hsize_t>(262144 / std::max<hsize_t>(row_bytes, 1), 1, dims[0]);
+        Check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()),
+              "H5Pset_chunk " + name);
+        Check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle");
+        Check(H5Pset_deflate(dcpl.get(), 4), "H5Pset_deflate");
+    }
+    const Id dataset = Check(H5Dcreate2(parent, name.c_str(), file_type, space.get(), H5P_DEFAULT,
+                                        dcpl.get(), H5P_DEFAULT),
+                             H5Dclose, "H5Dcreate2 " + name);
+    if (count > 0) {
+        Check(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
+              "H5Dwrite " + name);
+    }
+}
+
+void WriteAttribute(hid_t object, const std::string& name, double value) {
+    WriteAttributeRaw(object, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, ScalarSpace().get(), &value);
+}
+
+void WriteAttribute(hid_t object, const std::string& name, std::int32_t value) {
+    WriteAttributeRaw(object, name, H5T_STD_I32LE, H5T_NATIVE_INT32, ScalarSpace().get(), &value);
+}
+
+void WriteAttribute(hid_t object, const std::string& name, std::uint64_t value) {
+    WriteAttributeRaw(object, name, H5T_STD_U64LE, H5T_NATIVE_UINT64, ScalarSpace().get(), &value);
+}
+
+void WriteAttribute(hid_t object, const std::string& name, const std::vector<double>& values) {
+    const hsize_t n = values.size();
+    const Id space = Check(H5Screate_simple(1, &n, nullptr), H5Sclose, "H5Screate_simple");
+    WriteAttributeRaw(object, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, space.get(), values.data());
+}
+
+void WriteAttribute(hid_t object, const std::string& name, const std::string& value) {
+    const Id type = Utf8StringType();
+    const char* text = value.c_str();
+    WriteAttributeRaw(object, name, type.get(), type.get(), ScalarSpace().get(), &text);
+}
+
+// ----------------------------------------------------------------------------------------------
+
+FileReader::FileReader(std::string path) : path_(std::move(path)) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path_, ec)) {
+        throw MakeInputError(path_, "run file", "", "does not exist or is not a regular file");
+    }
+    const Id fapl = Check(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate");
+    Check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), "H5Pset_fclose_degree");
+    const hid_t file = H5Fopen(path_.c_str(), H5F_ACC_RDONLY, fapl.get());
+    if (file < 0) {
+        throw MakeInputError(path_, "run file", "", "not a readable HDF5 file");
+    }
+    file_ = Id(file, H5Fclose);
+}
+
+InputError FileReader::Error(const std::string& object,
+                             const std::string& value,
+                             const std::string& rule) const {
+    return MakeInputError(path_, object, value, rule);
+}
+
+bool FileReader::Has(const std::string& object) const {
+    // Check each link on the way so a missing parent group is "absent", not an error.
+    std::size_t pos = 1;
+    while (pos <= object.size()) {
+        const std::size_t next = object.find('/', pos);
+        const std::string prefix = object.substr(0, next);
+        if (H5Lexists(file_.get(), prefix.c_str(), H5P_DEFAULT) <= 0) {
+            return false;
+        }
+        if (next == std::string::npos) {
+            break;
+        }
+        pos = next + 1;
+    }
+    return true;
+}
+
+std::vector<std::string> FileReader::Children(const std::string& group) const {
+    std::vector<std::string> names;
+    const Id g =
+        Check(H5Gopen2(file_.get(), group.c_str(), H5P_DEFAULT), H5Gclose, "H5Gopen2 " + group);
+    H5G_info_t info{};
+    Check(H5Gget_info(g.get(), &info), "H5Gget_info " + group);
+    for (hsize_t i = 0; i < info.nlinks; ++i) {
+        const ssize_t len = H5Lget_name_by_idx(g.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr,
+                                               0, H5P_DEFAULT);
+        if (len < 0) {
+            throw Error(group, "", "cannot list its members");
+        }
+        std::string name(static_cast<std::size_t>(len) + 1, '\0');
+        H5Lget_name_by_idx(g.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(),
+                           H5P_DEFAULT);
+        name.resize(static_cast<std::size_t>(len));
+        names.push_back(name);
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+void FileReader::ReadRawImpl(const std::string& dataset,
+                             int rank,
+                             H5T_class_t expected,
+                             hid_t memory_type,
+                             std::vector<hsize_t>& dims,
+                             void* (*alloc)(std::size_t, void*),
+                             void* ctx) const {
+    if (!Has(dataset)) {
+        throw Error(dataset, "", "required dataset is missing");
+    }
+    H5O_info_t info{};
+    if (H5Oget_info_by_name(file_.get(), dataset.c_str(), &info, H5P_DEFAULT) < 0 ||
+        info.type != H5O_TYPE_DATASET) {
+        throw Error(dataset, "", "must be a dataset");
+    }
+    const Id d =
+        Check(H5Dopen2(file_.get(), dataset.c_str(), H5P_DEFAULT), H5Dclose, "H5Dopen2 " + dataset);
+    const Id type = Check(H5Dget_type(d.get()), H5Tclose, "H5Dget_type " + dataset);
+    const H5T_class_t cls = H5Tget_class(type.get());
+    if (cls != expected) {
+        throw Error(dataset, ClassName(cls), "element type must be " + ClassName(expected));
+    }
+    const Id space = Check(H5Dget_space(d.get()), H5Sclose, "H5Dget_space " + dataset);
+    const int ndims = H5Sget_simple_extent_ndims(space.get());
+    dims.assign(static_cast<std::size_t>(std::max(ndims, 0)), 0);
+    if (ndims > 0) {
+        H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+    }
+    if (ndims != rank) {
+        throw Error(dataset, "shape " + ShapeText(dims),
+                    "must have " + std::to_string(rank) + " dimension(s)");
+    }
+    std::size_t count = 1;
+    for (const hsize_t v : dims) {
+        count *= static_cast<std::size_t>(v);
+    }
+    void* buffer = alloc(count, ctx);
+    if (count > 0 && H5Dread(d.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer) < 0) {
+        throw Error(dataset, "", "cannot be read (corrupt or unsupported encoding)");
+    }
+}
+
+Id FileReader::OpenAttribute(const std::string& object,
+                             const std::string& name,
+                             H5T_class_t expected) const {
+    if (H5Aexists_by_name(file_.get(), object.c_str(), name.c_str(), H5P_DEFAULT) <= 0) {
+        return Id();
+    }
+    Id attr =
+        Check(H5Aopen_by_name(file_.get(), object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+              H5Aclose, "H5Aopen_by_name " + name);
+    const Id type = Check(H5Aget_type(attr.get()), H5Tclose, "H5Aget_type " + name);
+    const H5T_class_t cls = H5Tget_class(type.get());
+    if (cls != expected) {
+        throw Error(AttributeWhere(object, name), ClassName(cls),
+                    "attribute type must be " + ClassName(expected));
+    }
+    return attr;
+}
+
+namespace {
+hssize_t AttributeElements(hid_t attr) {
+    const Id space = Check(H5Aget_space(attr), H5Sclose, "H5Aget_space");
+    return H5Sget_simple_extent_npoints(space.get());
+}
+}  // namespace
+
+std::optional<double> FileReader::ReadDouble(const std::string& object,
+                                             const std::string& name) const {
+    const Id attr = OpenAttribute(object, name, H5T_FLOAT);
+    if (attr.get() < 0) {
+        return std::nullopt;
+    }
+    if (AttributeElements(attr.get()) != 1) {
+        throw Error(AttributeWhere(object, name), "", "must be a single number");
+    }
+    double value = 0.0;
+    Check(H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &value), "H5Aread " + name);
+    return value;
+}
+
+std::optional<std::int64_t> FileReader::ReadInteger(const std::string& object,
+                                                    const std::string& name) const {
+    const Id attr = OpenAttribute(object, name, H5T_INTEGER);
+    if (attr.get() < 0) {
+        return std::nullopt;
+    }
+    if (AttributeElements(attr.get()) != 1) {
+        throw Error(AttributeWhere(object, name), "", "must be a single integer");
+    }
+    std::int64_t value = 0;
+    Check(H5Aread(attr.get(), H5T_NATIVE_INT64, &value), "H5Aread " + name);
+    return value;
+}
+
+std::optional<std::uint64_t> FileReader::ReadUnsigned(const std::string& object,
+                                                      const std::string& name) const {
+    const Id attr = OpenAttribute(object, name, H5T_INTEGER);
+    if (attr.get() < 0) {
+        return std::nullopt;
+    }
+    const Id type = Check(H5Aget_type(attr.get()), H5Tclose, "H5Aget_type " + name);
+    if (AttributeElements(attr.get()) != 1 || H5Tget_sign(type.get()) != H5T_SGN_NONE) {
+        throw Error(AttributeWhere(object, name), "", "must be a single unsigned integer");
+    }
+    std::uint64_t value = 0;
+    Check(H5Aread(attr.get(), H5T_NATIVE_UINT64, &value), "H5Aread " + name);
+    return value;
+}
+
+std::optional<std::vector<double>> FileReader::ReadDoubles(const std::string& object,
+                                                           const std::string& name) const {
+    const Id attr = OpenAttribute(object, name, H5T_FLOAT);
+    if (attr.get() < 0) {
+        return std::nullopt;
+    }
+    const hssize_t n = AttributeElements(attr.get());
+    std::vector<double> values(static_cast<std::size_t>(std::max<hssize_t>(n, 0)));
+    if (!values.empty()) {
+        Check(H5Aread(attr.get(), H5T_NATIVE_DOUBLE, values.data()), "H5Aread " + name);
+    }
+    return values;
+}
+
+std::optional<std::string> FileReader::ReadString(const std::string& object,
+                                                  const std::string& name) const {
+    const Id attr = OpenAttribute(object, name, H5T_STRING);
+    if (attr.get() < 0) {
+        return std::nullopt;
+    }
+    if (AttributeElements(attr.get()) != 1) {
+        throw Error(AttributeWhere(object, name), "", "must be a single string");
+    }
+    const Id type = Check(H5Aget_type(attr.get()), H5Tclose, "H5Aget_type " + name);
+    if (H5Tis_variable_str(type.get()) > 0) {
+        const Id memory = Utf8StringType();
+        char* text = nullptr;
+        Check(H5Aread(attr.get(), memory.get(), &text), "H5Aread " + name);
+        std::string value = text == nullptr ? std::string() : std::string(text);
+        H5free_memory(text);
+        return value;
+    }
+    // Fixed-length string (e.g. numpy bytes): read the bytes, drop NUL padding.
+    const std::size_t size = H5Tget_size(type.get());
+    std::string value(size, '\0');
+    Check(H5Aread(attr.get(), type.get(), value.data()), "H5Aread " + name);
+    value.resize(std::min(value.find('\0'), value.size()));
+    return value;
+}
+
+}  // namespace casmap::io::h5

@@ -1,0 +1,550 @@
+#include "io/run_file.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string_view>
+
+#include "core/input_error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/hdf5_util.hpp"
+
+namespace casmap::io {
+namespace {
+namespace fs = std::filesystem;
+using h5::Id;
+
+constexpr std::int32_t kFormatVersion = 1;
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+std::string_view ModeName(core::RangeMode mode) {
+    switch (mode) {
+        case core::RangeMode::k8m:
+            return "8m";
+        case core::RangeMode::k16m:
+            return "16m";
+        case core::RangeMode::k32m:
+            return "32m";
+    }
+    return "8m";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writing
+
+/// Scan geometry shared by all scans of a run; InputError if a scan disagrees.
+std::size_t CheckScans(const fs::path& path, const RunData& data) {
+    if (data.scans.empty()) {
+        return 0;
+    }
+    const core::Scan& first = data.scans.front();
+    const std::size_t beams = first.beams.size();
+    if (!first.beam_time_offset_s.empty() && first.beam_time_offset_s.size() != beams) {
+        throw MakeInputError(path.string(), "scans[0].beam_time_offset_s",
+                             std::to_string(first.beam_time_offset_s.size()) + " offsets",
+                             "must be empty or one per beam");
+    }
+    for (std::size_t i = 0; i < data.scans.size(); ++i) {
+        const core::Scan& s = data.scans[i];
+        const std::string where = "scans[" + std::to_string(i) + "]";
+        if (s.beams.size() != beams) {
+            throw MakeInputError(path.string(), where + ".beams",
+                                 std::to_string(s.beams.size()) + " beams",
+                                 "all scans of a run need " + std::to_string(beams));
+        }
+        if (s.start_angle_rad != first.start_angle_rad ||
+            s.angle_step_rad != first.angle_step_rad || s.beam_period_s != first.beam_period_s ||
+            s.beam_time_offset_s != first.beam_time_offset_s) {
+            throw MakeInputError(path.string(), where, "",
+                                 "angles and beam timing must equal those of scans[0]");
+        }
+        if (!std::isfinite(s.stamp_s)) {
+            throw MakeInputError(path.string(), where + ".stamp_s", std::to_string(s.stamp_s),
+                                 "must be finite");
+        }
+    }
+    if (!data.truth.empty() && data.truth.size() != data.scans.size()) {
+        throw MakeInputError(path.string(), "truth", std::to_string(data.truth.size()) + " entries",
+                             "must be empty or one per scan");
+    }
+    for (std::size_t i = 0; i < data.truth.size(); ++i) {
+        const core::ScanTruth& t = data.truth[i];
+        if (t.labels.size() != beams ||
+            (!t.true_range_m.empty() && t.true_range_m.size() != beams)) {
+            throw MakeInputError(path.string(), "truth[" + std::to_string(i) + "]", "",
+                                 "needs one label (and true range, if any) per beam");
+        }
+    }
+    return beams;
+}
+
+void WriteScans(hid_t file, const fs::path& path, const RunData& data) {
+    const std::size_t beams = CheckScans(path, data);
+    const std::size_t n = data.scans.size();
+    const Id group = h5::CreateGroup(file, "scans");
+    std::vector<double> stamps(n);
+    std::vector<float> ranges(n * beams);
+    std::vector<std::uint16_t> raw(n * beams);
+    std::vector<std::uint8_t> status(n * beams);
+    for (std::size_t i = 0; i < n; ++i) {
+        const core::Scan& s = data.scans[i];
+        stamps[i] = s.stamp_s;
+        for (std::size_t j = 0; j < beams; ++j) {
+            const core::Beam& b = s.beams[j];
+            const std::size_t k = i * beams + j;
+            if (b.status == core::BeamStatus::kOk && !std::isfinite(b.range_m)) {
+                throw MakeInputError(
+                    path.string(),
+                    "scans[" + std::to_string(i) + "].beams[" + std::to_string(j) + "].range_m",
+                    std::to_string(b.range_m), "status ok needs a finite range");
+            }
+            ranges[k] = b.status == core::BeamStatus::kOk ? b.range_m : kNaN;
+            raw[k] = b.raw;
+            status[k] = static_cast<std::uint8_t>(b.status);
+        }
+    }
+    const std::vector<hsize_t> dims2 = {n, beams};
+    h5::WriteDataset(group.get(), "stamp_s", {n}, stamps);
+    h5::WriteDataset(group.get(), "ranges_m", dims2, ranges);
+    h5::WriteDataset(group.get(), "raw", dims2, raw);
+    h5::WriteDataset(group.get(), "status", dims2, status);
+    if (!data.truth.empty()) {
+        std::vector<std::uint8_t> labels(n * beams);
+        std::vector<float> true_range(n * beams, kNaN);
+        bool have_true_range = true;
+        for (std::size_t i = 0; i < n; ++i) {
+            const core::ScanTruth& t = data.truth[i];
+            have_true_range = have_true_range && !t.true_range_m.empty();
+            for (std::size_t j = 0; j < beams; ++j) {
+                labels[i * beams + j] = static_cast<std::uint8_t>(t.labels[j]);
+                if (!t.true_range_m.empty()) {
+                    true_range[i * beams + j] = t.true_range_m[j];
+                }
+            }
+        }
+        h5::WriteDataset(group.get(), "labels", dims2, labels);
+        if (have_true_range) {
+            h5::WriteDataset(group.get(), "true_range_m", dims2, true_range);
+        }
+    }
+    const core::Scan proto = n > 0 ? data.scans.front() : core::Scan{};
+    h5::WriteAttribute(group.get(), "start_angle_rad", proto.start_angle_rad);
+    h5::WriteAttribute(group.get(), "angle_step_rad", proto.angle_step_rad);
+    h5::WriteAttribute(group.get(), "beam_period_s", proto.beam_period_s);
+    if (!proto.beam_time_offset_s.empty()) {
+        h5::WriteAttribute(group.get(), "beam_time_offset_s", proto.beam_time_offset_s);
+    }
+    if (data.format) {
+        h5::WriteAttribute(group.get(), "range_mode", std::string(ModeName(data.format->mode)));
+        h5::WriteAttribute(
+            group.get(), "range_units",
+            std::string(data.format->units == core::RangeUnits::kMillimetre ? "mm" : "cm"));
+    }
+}
+
+void WritePoses(hid_t file, const core::Trajectory& poses) {
+    const Id group = h5::CreateGroup(file, "poses");
+    const std::size_t p = poses.size();
+    std::vector<double> stamps(p);
+    std::vector<double> xyz(p * 3);
+    std::vector<double> quat(p * 4);
+    for (std::size_t i = 0; i < p; ++i) {
+        const core::TimedPose& tp = poses.samples()[i];
+        stamps[i] = tp.stamp_s;
+        for (int k = 0; k < 3; ++k) {
+            xyz[i * 3 + static_cast<std::size_t>(k)] = tp.world_T_sensor.translation[k];
+        }
+        const Eigen::Vector4d q = tp.world_T_sensor.rotation.coeffs();  // x, y, z, w
+        for (int k = 0; k < 4; ++k) {
+            quat[i * 4 + static_cast<std::size_t>(k)] = q[k];
+        }
+    }
+    h5::WriteDataset(group.get(), "stamp_s", {p}, stamps);
+    h5::WriteDataset(group.get(), "xyz_m", {p, 3}, xyz);
+    h5::WriteDataset(group.get(), "quat_xyzw", {p, 4}, quat);
+}
+
+void CheckLayer(const fs::path& path,
+                const core::GridGeometry& grid,
+                const std::string& name,
+                const core::MapF& map) {
+    if (map.rows != grid.rows || map.cols != grid.cols ||
+        map.data.size() !=
+            static_cast<std::size_t>(map.rows) * static_cast<std::size_t>(map.cols)) {
+        throw MakeInputError(path.string(), "maps." + name,
+                             std::to_string(map.rows) + " x " + std::to_string(map.cols),
+                             "must match the grid's " + std::to_string(grid.rows) + " x " +
+                                 std::to_string(grid.cols));
+    }
+}
+
+void WriteLayer(hid_t group, const std::string& name, const core::MapF& map) {
+    h5::WriteDataset(group, name, {static_cast<hsize_t>(map.rows), static_cast<hsize_t>(map.cols)},
+                     map.data);
+}
+
+void WriteMaps(hid_t file, const fs::path& path, const RunMaps& maps) {
+    if (!maps.grid) {
+        if (!maps.empty()) {
+            throw MakeInputError(path.string(), "maps.grid", "", "map layers need a grid");
+        }
+        return;
+    }
+    const core::GridGeometry& grid = *maps.grid;
+    try {
+        grid.Validate();
+    } catch (const InputError& e) {
+        throw MakeInputError(path.string(), "maps.grid", "", e.what());
+    }
+    const Id group = h5::CreateGroup(file, "maps");
+    h5::WriteAttribute(group.get(), "origin_x_m", grid.x0_m);
+    h5::WriteAttribute(group.get(), "origin_y_m", grid.y0_m);
+    h5::WriteAttribute(group.get(), "cell_m", grid.cell_m);
+    h5::WriteAttribute(group.get(), "rows", static_cast<std::int32_t>(grid.rows));
+    h5::WriteAttribute(group.get(), "cols", static_cast<std::int32_t>(grid.cols));
+    const std::pair<const char*, const std::optional<core::MapF>*> layers[] = {
+        {"elevation_m", &maps.elevation_m},
+        {"certainty", &maps.certainty},
+        {"truth_m", &maps.truth_m}};
+    for (const auto& [name, layer] : layers) {
+        if (*layer) {
+            CheckLayer(path, grid, name, **layer);
+            WriteLayer(group.get(), name, **layer);
+        }
+    }
+    if (maps.filtered.empty()) {
+        return;
+    }
+    const Id filtered = h5::CreateGroup(group.get(), "filtered");
+    for (const auto& [method, map] : maps.filtered) {  // std::map: sorted, deterministic
+        if (method.empty() || method.find('/') != std::string::npos || method == "." ||
+            method == "..") {
+            throw MakeInputError(path.string(), "maps.filtered", "'" + method + "'",
+                                 "method names must be non-empty, without '/'");
+        }
+        CheckLayer(path, grid, "filtered." + method, map);
+        WriteLayer(filtered.get(), method, map);
+    }
+}
+
+void WriteRunFileTo(const fs::path& tmp, const fs::path& path, const RunData& data) {
+    const Id file = h5::CreateFile(tmp.string());
+    h5::WriteAttribute(file.get(), "casmap_run_format_version", kFormatVersion);
+    if (data.seed) {
+        h5::WriteAttribute(file.get(), "seed", *data.seed);
+    }
+    h5::WriteAttribute(file.get(), "config_yaml", data.config_yaml);
+    WriteScans(file.get(), path, data);
+    WritePoses(file.get(), data.poses);
+    WriteMaps(file.get(), path, data.maps);
+    h5::Check(H5Fflush(file.get(), H5F_SCOPE_LOCAL), "H5Fflush " + tmp.string());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading
+
+std::string Shape(const std::vector<hsize_t>& dims) {
+    std::string text;
+    for (std::size_t i = 0; i < dims.size(); ++i) {
+        text += (i == 0 ? "" : " x ") + std::to_string(dims[i]);
+    }
+    return "shape " + text;
+}
+
+/// Reads an N x B dataset and checks its shape.
+template <typename T>
+std::vector<T> ReadBeams(const h5::FileReader& r, const std::string& name, hsize_t n, hsize_t b) {
+    std::vector<hsize_t> dims;
+    std::vector<T> values = r.Read<T>(name, 2, dims);
+    if (dims[0] != n || dims[1] != b) {
+        throw r.Error(name, Shape(dims),
+                      "must be N x B = " + std::to_string(n) + " x " + std::to_string(b) +
+                          " like /scans/ranges_m and /scans/stamp_s");
+    }
+    return values;
+}
+
+double RequiredDouble(const h5::FileReader& r, const std::string& object, const std::string& name) {
+    const std::optional<double> v = r.ReadDouble(object, name);
+    if (!v || !std::isfinite(*v)) {
+        throw r.Error(h5::AttributeWhere(object, name), v ? std::to_string(*v) : "",
+                      v ? "must be finite" : "required attribute is missing");
+    }
+    return *v;
+}
+
+core::Scan ReadScanGeometry(const h5::FileReader& r, std::size_t beams) {
+    core::Scan proto;
+    proto.start_angle_rad = RequiredDouble(r, "/scans", "start_angle_rad");
+    proto.angle_step_rad = RequiredDouble(r, "/scans", "angle_step_rad");
+    proto.beam_period_s = RequiredDouble(r, "/scans", "beam_period_s");
+    if (auto offsets = r.ReadDoubles("/scans", "beam_time_offset_s")) {
+        if (offsets->size() != beams) {
+            throw r.Error(h5::AttributeWhere("/scans", "beam_time_offset_s"),
+                          std::to_string(offsets->size()) + " values",
+                          "must hold one offset per beam (" + std::to_string(beams) + ")");
+        }
+        proto.beam_time_offset_s = std::move(*offsets);
+    }
+    return proto;
+}
+
+std::optional<core::Lms200Format> ReadFormat(const h5::FileReader& r) {
+    const std::optional<std::string> mode = r.ReadString("/scans", "range_mode");
+    const std::optional<std::string> units = r.ReadString("/scans", "range_units");
+    if (!mode && !units) {
+        return std::nullopt;
+    }
+    if (!mode || !units) {
+        throw r.Error(h5::AttributeWhere("/scans", mode ? "range_units" : "range_mode"), "",
+                      "range_mode and range_units come together");
+    }
+    core::Lms200Format format;
+    if (*mode == "8m") {
+        format.mode = core::RangeMode::k8m;
+    } else if (*mode == "16m") {
+        format.mode = core::RangeMode::k16m;
+    } else if (*mode == "32m") {
+        format.mode = core::RangeMode::k32m;
+    } else {
+        throw r.Error(h5::AttributeWhere("/scans", "range_mode"), *mode, "allowed: 8m, 16m, 32m");
+    }
+    if (*units != "mm" && *units != "cm") {
+        throw r.Error(h5::AttributeWhere("/scans", "range_units"), *units, "allowed: mm, cm");
+    }
+    format.units = *units == "mm" ? core::RangeUnits::kMillimetre : core::RangeUnits::kCentimetre;
+    return format;
+}
+
+std::string BeamIndex(const std::string& dataset, std::size_t k, std::size_t beams) {
+    return dataset + "[" + std::to_string(k / beams) + ", " + std::to_string(k % beams) + "]";
+}
+
+void ReadScans(const h5::FileReader& r, RunData& data) {
+    std::vector<hsize_t> dims;
+    const std::vector<double> stamps = r.Read<double>("/scans/stamp_s", 1, dims);
+    const hsize_t n = dims[0];
+    const std::vector<float> ranges = r.Read<float>("/scans/ranges_m", 2, dims);
+    if (dims[0] != n) {
+        throw r.Error("/scans/ranges_m", Shape(dims),
+                      "needs one row per entry of /scans/stamp_s (" + std::to_string(n) + ")");
+    }
+    const hsize_t b = dims[1];
+    const auto raw = ReadBeams<std::uint16_t>(r, "/scans/raw", n, b);
+    const auto status = ReadBeams<std::uint8_t>(r, "/scans/status", n, b);
+    const std::size_t beams = static_cast<std::size_t>(b);
+    const core::Scan proto = ReadScanGeometry(r, beams);
+    data.format = ReadFormat(r);
+    data.scans.assign(static_cast<std::size_t>(n), proto);
+    for (std::size_t i = 0; i < data.scans.size(); ++i) {
+        core::Scan& s = data.scans[i];
+        if (!std::isfinite(stamps[i])) {
+            throw r.Error("/scans/stamp_s[" + std::to_string(i) + "]", std::to_string(stamps[i]),
+                          "must be finite");
+        }
+        s.stamp_s = stamps[i];
+        s.beams.resize(beams);
+        for (std::size_t j = 0; j < beams; ++j) {
+            const std::size_t k = i * beams + j;
+            if (status[k] >= core::kBeamStatusCount) {
+                throw r.Error(BeamIndex("/scans/status", k, beams), std::to_string(status[k]),
+                              "allowed: 0..6 (BeamStatus)");
+            }
+            core::Beam& beam = s.beams[j];
+            beam.status = static_cast<core::BeamStatus>(status[k]);
+            beam.raw = raw[k];
+            beam.range_m = beam.status == core::BeamStatus::kOk ? ranges[k] : kNaN;
+            if (beam.status == core::BeamStatus::kOk && !std::isfinite(ranges[k])) {
+                throw r.Error(BeamIndex("/scans/ranges_m", k, beams), std::to_string(ranges[k]),
+                              "a beam with status 0 (ok) needs a finite range");
+            }
+        }
+    }
+    if (!r.Has("/scans/labels")) {
+        if (r.Has("/scans/true_range_m")) {
+            throw r.Error("/scans/true_range_m", "", "needs /scans/labels beside it");
+        }
+        return;
+    }
+    const auto labels = ReadBeams<std::uint8_t>(r, "/scans/labels", n, b);
+    std::vector<float> true_range;
+    if (r.Has("/scans/true_range_m")) {
+        true_range = ReadBeams<float>(r, "/scans/true_range_m", n, b);
+    }
+    data.truth.resize(data.scans.size());
+    for (std::size_t i = 0; i < data.truth.size(); ++i) {
+        core::ScanTruth& t = data.truth[i];
+        t.labels.resize(beams);
+        for (std::size_t j = 0; j < beams; ++j) {
+            const std::size_t k = i * beams + j;
+            if (labels[k] >= core::kBeamLabelCount) {
+                throw r.Error(BeamIndex("/scans/labels", k, beams), std::to_string(labels[k]),
+                              "allowed: 0..4 (BeamLabel)");
+            }
+            t.labels[j] = static_cast<core::BeamLabel>(labels[k]);
+        }
+        if (!true_range.empty()) {
+            t.true_range_m.assign(
+                true_range.begin() + static_cast<std::ptrdiff_t>(i * beams),
+                true_range.begin() + static_cast<std::ptrdiff_t>((i + 1) * beams));
+        }
+    }
+}
+
+void ReadPoses(const h5::FileReader& r, RunData& data) {
+    std::vector<hsize_t> dims;
+    const std::vector<double> stamps = r.Read<double>("/poses/stamp_s", 1, dims);
+    const hsize_t p = dims[0];
+    const std::vector<double> xyz = r.Read<double>("/poses/xyz_m", 2, dims);
+    if (dims[0] != p || dims[1] != 3) {
+        throw r.Error("/poses/xyz_m", Shape(dims), "must be P x 3 with P = " + std::to_string(p));
+    }
+    const std::vector<double> quat = r.Read<double>("/poses/quat_xyzw", 2, dims);
+    if (dims[0] != p || dims[1] != 4) {
+        throw r.Error("/poses/quat_xyzw", Shape(dims),
+                      "must be P x 4 with P = " + std::to_string(p));
+    }
+    std::vector<core::TimedPose> samples(static_cast<std::size_t>(p));
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        const Eigen::Vector3d t(xyz[i * 3], xyz[i * 3 + 1], xyz[i * 3 + 2]);
+        Eigen::Quaterniond q(quat[i * 4 + 3], quat[i * 4], quat[i * 4 + 1], quat[i * 4 + 2]);
+        if (!t.allFinite()) {
+            throw r.Error("/poses/xyz_m[" + std::to_string(i) + "]", "", "must be finite");
+        }
+        if (!q.coeffs().allFinite() || std::abs(q.norm() - 1.0) > 1e-3) {
+            throw r.Error("/poses/quat_xyzw[" + std::to_string(i) + "]",
+                          "norm " + std::to_string(q.norm()), "must be a unit quaternion");
+        }
+        q.normalize();
+        samples[i] = core::TimedPose{stamps[i], core::Pose{t, q}};
+    }
+    try {
+        data.poses = core::Trajectory(std::move(samples));
+    } catch (const InputError& e) {
+        throw r.Error("/poses/stamp_s", "", e.what());
+    }
+}
+
+core::MapF ReadLayer(const h5::FileReader& r,
+                     const std::string& name,
+                     const core::GridGeometry& g) {
+    std::vector<hsize_t> dims;
+    core::MapF map;
+    map.data = r.Read<float>(name, 2, dims);
+    if (dims[0] != static_cast<hsize_t>(g.rows) || dims[1] != static_cast<hsize_t>(g.cols)) {
+        throw r.Error(name, Shape(dims),
+                      "must match /maps rows x cols = " + std::to_string(g.rows) + " x " +
+                          std::to_string(g.cols));
+    }
+    map.rows = g.rows;
+    map.cols = g.cols;
+    return map;
+}
+
+int RequiredCount(const h5::FileReader& r, const std::string& name) {
+    const std::optional<std::int64_t> v = r.ReadInteger("/maps", name);
+    if (!v || *v <= 0 || *v > std::numeric_limits<int>::max()) {
+        throw r.Error(h5::AttributeWhere("/maps", name), v ? std::to_string(*v) : "",
+                      v ? "must be a positive count" : "required attribute is missing");
+    }
+    return static_cast<int>(*v);
+}
+
+RunMaps ReadMaps(const h5::FileReader& r) {
+    RunMaps maps;
+    if (!r.Has("/maps")) {
+        return maps;
+    }
+    core::GridGeometry g;
+    g.x0_m = RequiredDouble(r, "/maps", "origin_x_m");
+    g.y0_m = RequiredDouble(r, "/maps", "origin_y_m");
+    g.cell_m = RequiredDouble(r, "/maps", "cell_m");
+    g.rows = RequiredCount(r, "rows");
+    g.cols = RequiredCount(r, "cols");
+    if (!(g.cell_m > 0.0)) {
+        throw r.Error(h5::AttributeWhere("/maps", "cell_m"), std::to_string(g.cell_m),
+                      "must be > 0");
+    }
+    maps.grid = g;
+    if (r.Has("/maps/elevation_m")) {
+        maps.elevation_m = ReadLayer(r, "/maps/elevation_m", g);
+    }
+    if (r.Has("/maps/certainty")) {
+        maps.certainty = ReadLayer(r, "/maps/certainty", g);
+    }
+    if (r.Has("/maps/truth_m")) {
+        maps.truth_m = ReadLayer(r, "/maps/truth_m", g);
+    }
+    if (r.Has("/maps/filtered")) {
+        for (const std::string& method : r.Children("/maps/filtered")) {
+            maps.filtered[method] = ReadLayer(r, "/maps/filtered/" + method, g);
+        }
+    }
+    return maps;
+}
+
+void CheckVersion(const h5::FileReader& r) {
+    const std::optional<std::int64_t> version = r.ReadInteger("/", "casmap_run_format_version");
+    if (version && *version != kFormatVersion) {
+        throw r.Error(h5::AttributeWhere("/", "casmap_run_format_version"),
+                      std::to_string(*version),
+                      "this casmap reads version " + std::to_string(kFormatVersion));
+    }
+}
+
+}  // namespace
+
+void WriteRunFile(const fs::path& path, const RunData& data) {
+    WriteAtomically(path, [&](const fs::path& tmp) {
+        const auto lock = h5::LibraryLock();
+        WriteRunFileTo(tmp, path, data);
+    });
+}
+
+RunData ReadRunFile(const fs::path& path) {
+    const auto lock = h5::LibraryLock();
+    const h5::FileReader r(path.string());
+    CheckVersion(r);
+    RunData data;
+    data.seed = r.ReadUnsigned("/", "seed");
+    data.config_yaml = r.ReadString("/", "config_yaml").value_or("");
+    ReadScans(r, data);
+    ReadPoses(r, data);
+    data.maps = ReadMaps(r);
+    return data;
+}
+
+RunMaps ReadRunMaps(const fs::path& path) {
+    const auto lock = h5::LibraryLock();
+    const h5::FileReader r(path.string());
+    CheckVersion(r);
+    return ReadMaps(r);
+}
+
+void AddRunMaps(const fs::path& path, const RunMaps& maps) {
+    RunData data = ReadRunFile(path);
+    RunMaps& stored = data.maps;
+    if (maps.grid) {
+        if (stored.grid && !(*stored.grid == *maps.grid)) {
+            throw MakeInputError(path.string(), "/maps", "",
+                                 "new layers must use the stored grid (origin, cell size, " +
+                                     std::to_string(stored.grid->rows) + " x " +
+                                     std::to_string(stored.grid->cols) + " cells)");
+        }
+        stored.grid = maps.grid;
+    }
+    if (maps.elevation_m) {
+        stored.elevation_m = maps.elevation_m;
+    }
+    if (maps.certainty) {
+        stored.certainty = maps.certainty;
+    }
+    if (maps.truth_m) {
+        stored.truth_m = maps.truth_m;
+    }
+    for (const auto& [method, map] : maps.filtered) {
+        stored.filtered[method] = map;
+    }
+    WriteRunFile(path, data);
+}
+
+}  // namespace casmap::io
