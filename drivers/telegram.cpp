@@ -1,0 +1,549 @@
+#include "drivers/telegram.hpp"
+
+#include <cstdio>
+
+#include "core/input_error.hpp"
+
+namespace casmap::drivers {
+namespace {
+
+std::string Hex(unsigned value, int digits = 2) {
+    char buf[16];
+    std::snprintf(buf, sizeof(buf), "0x%0*X", digits, value);
+    return buf;
+}
+
+InputError TelegramError(const Telegram& t,
+                         const std::string& field,
+                         const std::string& value,
+                         const std::string& rule) {
+    return MakeInputError("LMS 200 telegram " + CommandName(t.command), field, value, rule);
+}
+
+void PutU16(std::vector<std::uint8_t>& out, std::uint16_t v) {
+    out.push_back(static_cast<std::uint8_t>(v & 0xFFU));
+    out.push_back(static_cast<std::uint8_t>(v >> 8U));
+}
+
+std::uint16_t GetU16(std::span<const std::uint8_t> bytes, std::size_t at) {
+    return static_cast<std::uint16_t>(bytes[at] | (bytes[at + 1] << 8U));
+}
+
+/// Payload = CMD + data (+ status), the indexing sicktoolbox uses.
+std::uint8_t PayloadAt(const Telegram& t, std::size_t index) { return t.data.at(index - 1); }
+
+void ExpectCommand(const Telegram& t, std::uint8_t command) {
+    if (t.command != command) {
+        throw TelegramError(t, "command", CommandName(t.command),
+                            "expected " + CommandName(command));
+    }
+}
+
+void ExpectDataSize(const Telegram& t, std::size_t size) {
+    if (t.data.size() != size) {
+        const std::size_t expected = size + (t.IsReply() ? 2 : 1);
+        throw TelegramError(t, "LEN", std::to_string(t.Len()),
+                            "expected " + std::to_string(expected));
+    }
+}
+
+Telegram Request(std::uint8_t command, std::vector<std::uint8_t> data = {}) {
+    Telegram t;
+    t.address = kHostAddress;
+    t.command = command;
+    t.data = std::move(data);
+    return t;
+}
+
+Telegram Reply(std::uint8_t request, std::vector<std::uint8_t> data, std::uint8_t status) {
+    Telegram t;
+    t.address = kReplyAddressBit;
+    t.command = static_cast<std::uint8_t>(request | cmd::kReplyBit);
+    t.data = std::move(data);
+    t.status = status;
+    return t;
+}
+
+void PutAscii(std::vector<std::uint8_t>& data,
+              std::size_t at,
+              std::string_view text,
+              std::size_t width) {
+    for (std::size_t i = 0; i < width; ++i) {
+        data[at + i] = static_cast<std::uint8_t>(i < text.size() ? text[i] : ' ');
+    }
+}
+
+std::string GetAscii(const Telegram& t, std::size_t payload_index, std::size_t width) {
+    std::string s;
+    for (std::size_t i = 0; i < width; ++i) {
+        s.push_back(static_cast<char>(PayloadAt(t, payload_index + i)));
+    }
+    return s;
+}
+
+std::uint16_t MeasuredHeader(const MeasuredValues& v) {
+    if (v.values.size() > 0x3FF) {
+        throw MakeInputError("LMS 200 telegram 0xB0", "value count",
+                             std::to_string(v.values.size()), "at most 1023");
+    }
+    if (v.partial_index > 3) {
+        throw MakeInputError("LMS 200 telegram 0xB0", "partial_index",
+                             std::to_string(v.partial_index), "0..3");
+    }
+    if (v.realtime_index.size() > 2) {
+        throw MakeInputError("LMS 200 telegram 0xB0", "realtime_index bytes",
+                             std::to_string(v.realtime_index.size()), "0..2");
+    }
+    unsigned header = static_cast<unsigned>(v.values.size());
+    header |= static_cast<unsigned>(v.partial_index) << 11U;
+    header |= (v.partial ? 1U : 0U) << 13U;
+    header |= (v.units == core::RangeUnits::kMillimetre ? 1U : 0U) << 14U;
+    return static_cast<std::uint16_t>(header);
+}
+
+}  // namespace
+
+std::uint16_t Crc16(std::span<const std::uint8_t> bytes) {
+    std::uint16_t crc = 0;
+    std::uint8_t prev = 0;
+    for (const std::uint8_t b : bytes) {
+        if ((crc & 0x8000U) != 0) {
+            crc = static_cast<std::uint16_t>(((crc & 0x7FFFU) << 1U) ^ 0x8005U);
+        } else {
+            crc = static_cast<std::uint16_t>(crc << 1U);
+        }
+        crc ^= static_cast<std::uint16_t>((prev << 8U) | b);
+        prev = b;
+    }
+    return crc;
+}
+
+void AppendTelegram(const Telegram& telegram, std::vector<std::uint8_t>& out) {
+    const std::size_t len = telegram.Len();
+    if (len > kMaxLen) {
+        throw MakeInputError("LMS 200 telegram " + CommandName(telegram.command), "LEN",
+                             std::to_string(len), "at most " + std::to_string(kMaxLen));
+    }
+    const std::size_t start = out.size();
+    out.push_back(kStx);
+    out.push_back(telegram.address);
+    PutU16(out, static_cast<std::uint16_t>(len));
+    out.push_back(telegram.command);
+    out.insert(out.end(), telegram.data.begin(), telegram.data.end());
+    if (telegram.IsReply()) {
+        out.push_back(telegram.status);
+    }
+    const std::uint16_t crc = Crc16(std::span(out).subspan(start));
+    PutU16(out, crc);
+}
+
+std::vector<std::uint8_t> EncodeTelegram(const Telegram& telegram) {
+    std::vector<std::uint8_t> out;
+    out.reserve(telegram.Len() + kFrameOverhead);
+    AppendTelegram(telegram, out);
+    return out;
+}
+
+std::optional<Telegram> DecodeTelegram(std::span<const std::uint8_t> frame, FrameError* error) {
+    const auto fail = [error](FrameError e) -> std::optional<Telegram> {
+        if (error != nullptr) {
+            *error = e;
+        }
+        return std::nullopt;
+    };
+    if (frame.size() < kFrameOverhead + 1) {
+        return fail(FrameError::kShort);
+    }
+    if (frame[0] != kStx) {
+        return fail(FrameError::kNoStx);
+    }
+    const std::size_t len = GetU16(frame, 2);
+    const bool reply = (frame[1] & kReplyAddressBit) != 0;
+    if (len < (reply ? 2U : 1U) || len > kMaxLen || frame.size() != len + kFrameOverhead) {
+        return fail(FrameError::kBadLen);
+    }
+    const std::size_t crc_at = 4 + len;
+    if (Crc16(frame.first(crc_at)) != GetU16(frame, crc_at)) {
+        return fail(FrameError::kBadCrc);
+    }
+    Telegram t;
+    t.address = frame[1];
+    t.command = frame[4];
+    const std::size_t data_end = reply ? crc_at - 1 : crc_at;
+    t.data.assign(frame.begin() + 5, frame.begin() + static_cast<std::ptrdiff_t>(data_end));
+    t.status = reply ? frame[crc_at - 1] : kStatusOk;
+    if (error != nullptr) {
+        *error = FrameError::kNone;
+    }
+    return t;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+bool IsLmsBaud(int baud) {
+    return baud == 9600 || baud == 19200 || baud == 38400 || baud == 500000;
+}
+
+void CheckLmsBaud(int baud, const std::string& field) {
+    if (!IsLmsBaud(baud)) {
+        throw MakeInputError("", field, std::to_string(baud),
+                             "the LMS 200 has 9600, 19200, 38400 or 500000 baud");
+    }
+}
+
+std::uint8_t BaudModeByte(int baud) {
+    switch (baud) {
+        case 9600:
+            return mode::kBaud9600;
+        case 19200:
+            return mode::kBaud19200;
+        case 38400:
+            return mode::kBaud38400;
+        case 500000:
+            return mode::kBaud500000;
+        default:
+            CheckLmsBaud(baud, "baud");
+    }
+    return 0;
+}
+
+std::optional<int> BaudFromModeByte(std::uint8_t mode_byte) {
+    switch (mode_byte) {
+        case mode::kBaud9600:
+            return 9600;
+        case mode::kBaud19200:
+            return 19200;
+        case mode::kBaud38400:
+            return 38400;
+        case mode::kBaud500000:
+            return 500000;
+        default:
+            return std::nullopt;
+    }
+}
+
+std::uint16_t BaudWord(int baud) {
+    return static_cast<std::uint16_t>(0x8000 | (1000000 / baud - 1));
+}
+
+bool Variant::IsValid() const {
+    if (angle_deg != 100 && angle_deg != 180) {
+        return false;
+    }
+    if (resolution_cdeg == 100 || resolution_cdeg == 50) {
+        return true;
+    }
+    return resolution_cdeg == 25 && angle_deg == 100;
+}
+
+ConfigBlock ConfigBlock::Default(std::size_t size) {
+    ConfigBlock c;
+    c.bytes.assign(size, 0);
+    c.bytes[5] = 0x00;  // 8 m / 80 m, fields A, B, dazzle
+    c.bytes[6] = 0x01;  // mm
+    return c;
+}
+
+core::Lms200Format FormatOf(const ConfigBlock& config) {
+    core::Lms200Format f;
+    const std::uint8_t m = config.measuring_mode();
+    if (m <= 0x02) {
+        f.mode = core::RangeMode::k8m;
+    } else if (m <= 0x04) {
+        f.mode = core::RangeMode::k16m;
+    } else if (m <= 0x06) {
+        f.mode = core::RangeMode::k32m;
+    } else {
+        throw MakeInputError("LMS 200 configuration", "measuring mode (byte D)", Hex(m),
+                             "supported: 0x00-0x06");
+    }
+    const std::uint8_t u = config.units();
+    if (u > 1) {
+        throw MakeInputError("LMS 200 configuration", "units (byte E)", Hex(u),
+                             "supported: 0 = cm, 1 = mm");
+    }
+    f.units = u == 1 ? core::RangeUnits::kMillimetre : core::RangeUnits::kCentimetre;
+    return f;
+}
+
+std::uint8_t ModeByteOf(const core::Lms200Format& format) {
+    switch (format.mode) {
+        case core::RangeMode::k8m:
+            return 0x00;
+        case core::RangeMode::k16m:
+            return 0x04;
+        case core::RangeMode::k32m:
+            return 0x06;
+    }
+    return 0x00;
+}
+
+std::uint8_t UnitsByteOf(const core::Lms200Format& format) {
+    return format.units == core::RangeUnits::kMillimetre ? 1 : 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+Telegram MakeModeRequest(std::uint8_t mode_byte) { return Request(cmd::kMode, {mode_byte}); }
+
+Telegram MakeInstallationRequest(std::string_view password) {
+    if (password.size() != 8) {
+        throw MakeInputError("LMS 200 telegram 0x20", "password", std::string(password),
+                             "exactly 8 characters");
+    }
+    std::vector<std::uint8_t> data{mode::kInstallation};
+    data.insert(data.end(), password.begin(), password.end());
+    return Request(cmd::kMode, std::move(data));
+}
+
+Telegram MakeBaudRequest(int baud) { return MakeModeRequest(BaudModeByte(baud)); }
+Telegram MakeStatusRequest() { return Request(cmd::kStatus); }
+Telegram MakeErrorRequest() { return Request(cmd::kErrors); }
+Telegram MakeTypeRequest() { return Request(cmd::kType); }
+
+Telegram MakeVariantRequest(const Variant& variant) {
+    std::vector<std::uint8_t> data;
+    PutU16(data, variant.angle_deg);
+    PutU16(data, variant.resolution_cdeg);
+    return Request(cmd::kVariant, std::move(data));
+}
+
+Telegram MakeReadConfigRequest() { return Request(cmd::kReadConfig); }
+Telegram MakeWriteConfigRequest(const ConfigBlock& config) {
+    return Request(cmd::kWriteConfig, config.bytes);
+}
+Telegram MakeScanRequest() { return Request(cmd::kScan, {0x01}); }
+Telegram MakeResetRequest() { return Request(cmd::kReset); }
+
+Telegram MakeModeReply(std::uint8_t result, std::uint8_t status) {
+    return Reply(cmd::kMode, {result}, status);
+}
+
+Telegram MakeStatusReply(const DeviceStatus& d, std::uint8_t status) {
+    std::vector<std::uint8_t> data(kStatusDataSize, 0);
+    // data[i - 1] holds payload index i.
+    PutAscii(data, 0, d.software_version, 7);
+    data[7] = d.operating_mode;
+    data[8] = d.device_status;
+    data[101] = d.measuring_mode;
+    data[106] = static_cast<std::uint8_t>(d.variant.angle_deg & 0xFFU);
+    data[107] = static_cast<std::uint8_t>(d.variant.angle_deg >> 8U);
+    data[108] = static_cast<std::uint8_t>(d.variant.resolution_cdeg & 0xFFU);
+    data[109] = static_cast<std::uint8_t>(d.variant.resolution_cdeg >> 8U);
+    data[115] = static_cast<std::uint8_t>(d.baud_word & 0xFFU);
+    data[116] = static_cast<std::uint8_t>(d.baud_word >> 8U);
+    data[119] = d.address;
+    data[121] = d.units;
+    data[122] = 1;  // laser on
+    PutAscii(data, 123, d.boot_version, 7);
+    return Reply(cmd::kStatus, std::move(data), status);
+}
+
+Telegram MakeErrorReply(std::span<const std::pair<std::uint8_t, std::uint8_t>> errors,
+                        std::uint8_t status) {
+    std::vector<std::uint8_t> data;
+    for (const auto& [type, number] : errors) {
+        data.push_back(type);
+        data.push_back(number);
+    }
+    return Reply(cmd::kErrors, std::move(data), status);
+}
+
+Telegram MakeTypeReply(std::string_view type, std::uint8_t status) {
+    std::vector<std::uint8_t> data(21, ' ');
+    PutAscii(data, 0, type, 21);
+    return Reply(cmd::kType, std::move(data), status);
+}
+
+Telegram MakeVariantReply(bool accepted, const Variant& variant, std::uint8_t status) {
+    std::vector<std::uint8_t> data{static_cast<std::uint8_t>(accepted ? 1 : 0)};
+    PutU16(data, variant.angle_deg);
+    PutU16(data, variant.resolution_cdeg);
+    return Reply(cmd::kVariant, std::move(data), status);
+}
+
+Telegram MakeConfigReply(const ConfigBlock& config, std::uint8_t status) {
+    return Reply(cmd::kReadConfig, config.bytes, status);
+}
+
+Telegram MakeWriteConfigReply(bool accepted, const ConfigBlock& config, std::uint8_t status) {
+    std::vector<std::uint8_t> data{static_cast<std::uint8_t>(accepted ? 1 : 0)};
+    data.insert(data.end(), config.bytes.begin(), config.bytes.end());
+    return Reply(cmd::kWriteConfig, std::move(data), status);
+}
+
+Telegram MakeNotAcknowledged(std::uint8_t status) {
+    Telegram t;
+    t.address = kReplyAddressBit;
+    t.command = cmd::kNotAcknowledged;
+    t.status = status;
+    return t;
+}
+
+Telegram MakeResetReply(std::uint8_t status) {
+    Telegram t;
+    t.address = kReplyAddressBit;
+    t.command = cmd::kResetReply;
+    t.status = status;
+    return t;
+}
+
+Telegram MakeMeasuredValues(const MeasuredValues& v) {
+    std::vector<std::uint8_t> data;
+    data.reserve(2 + 2 * v.values.size() + v.realtime_index.size());
+    PutU16(data, MeasuredHeader(v));
+    for (const std::uint16_t value : v.values) {
+        PutU16(data, value);
+    }
+    data.insert(data.end(), v.realtime_index.begin(), v.realtime_index.end());
+    return Reply(cmd::kScan, std::move(data), v.status);
+}
+
+void AppendMeasuredValues(const MeasuredValues& v, std::vector<std::uint8_t>& out) {
+    const std::uint16_t header = MeasuredHeader(v);
+    const std::size_t len = 1 + 2 + 2 * v.values.size() + v.realtime_index.size() + 1;
+    if (len > kMaxLen) {
+        throw MakeInputError("LMS 200 telegram 0xB0", "LEN", std::to_string(len),
+                             "at most " + std::to_string(kMaxLen));
+    }
+    const std::size_t start = out.size();
+    out.push_back(kStx);
+    out.push_back(kReplyAddressBit);
+    PutU16(out, static_cast<std::uint16_t>(len));
+    out.push_back(cmd::kScan | cmd::kReplyBit);
+    PutU16(out, header);
+    for (const std::uint16_t value : v.values) {
+        PutU16(out, value);
+    }
+    out.insert(out.end(), v.realtime_index.begin(), v.realtime_index.end());
+    out.push_back(v.status);
+    PutU16(out, Crc16(std::span(out).subspan(start)));
+}
+
+// ---------------------------------------------------------------------------------------------
+
+std::uint8_t ParseModeReply(const Telegram& t) {
+    ExpectCommand(t, cmd::kMode | cmd::kReplyBit);
+    ExpectDataSize(t, 1);
+    return t.data[0];
+}
+
+DeviceStatus ParseStatusReply(const Telegram& t) {
+    ExpectCommand(t, cmd::kStatus | cmd::kReplyBit);
+    ExpectDataSize(t, kStatusDataSize);
+    const std::span<const std::uint8_t> d(t.data);
+    DeviceStatus s;
+    s.software_version = GetAscii(t, 1, 7);
+    s.operating_mode = PayloadAt(t, 8);
+    s.device_status = PayloadAt(t, 9);
+    s.measuring_mode = PayloadAt(t, 102);
+    s.variant.angle_deg = GetU16(d, 106);
+    s.variant.resolution_cdeg = GetU16(d, 108);
+    s.baud_word = GetU16(d, 115);
+    s.address = PayloadAt(t, 120);
+    s.units = PayloadAt(t, 122);
+    s.boot_version = GetAscii(t, 124, 7);
+    return s;
+}
+
+std::vector<std::pair<std::uint8_t, std::uint8_t>> ParseErrorReply(const Telegram& t) {
+    ExpectCommand(t, cmd::kErrors | cmd::kReplyBit);
+    if (t.data.size() % 2 != 0) {
+        throw TelegramError(t, "LEN", std::to_string(t.Len()), "2 + 2 * error pairs");
+    }
+    std::vector<std::pair<std::uint8_t, std::uint8_t>> errors;
+    for (std::size_t i = 0; i + 1 < t.data.size(); i += 2) {
+        errors.emplace_back(t.data[i], t.data[i + 1]);
+    }
+    return errors;
+}
+
+std::string ParseTypeReply(const Telegram& t) {
+    ExpectCommand(t, cmd::kType | cmd::kReplyBit);
+    if (t.data.empty()) {
+        throw TelegramError(t, "LEN", std::to_string(t.Len()), "at least 3");
+    }
+    return {t.data.begin(), t.data.end()};
+}
+
+VariantReply ParseVariantReply(const Telegram& t) {
+    ExpectCommand(t, cmd::kVariant | cmd::kReplyBit);
+    ExpectDataSize(t, 5);
+    VariantReply r;
+    r.accepted = t.data[0] == 1;
+    r.variant.angle_deg = GetU16(t.data, 1);
+    r.variant.resolution_cdeg = GetU16(t.data, 3);
+    return r;
+}
+
+ConfigBlock ParseConfigReply(const Telegram& t) {
+    ExpectCommand(t, cmd::kReadConfig | cmd::kReplyBit);
+    if (t.data.size() != ConfigBlock::kLongSize && t.data.size() != ConfigBlock::kShortSize) {
+        throw TelegramError(t, "LEN", std::to_string(t.Len()), "expected 36 or 34");
+    }
+    ConfigBlock c;
+    c.bytes = t.data;
+    return c;
+}
+
+WriteConfigReply ParseWriteConfigReply(const Telegram& t) {
+    ExpectCommand(t, cmd::kWriteConfig | cmd::kReplyBit);
+    if (t.data.size() != ConfigBlock::kLongSize + 1 &&
+        t.data.size() != ConfigBlock::kShortSize + 1) {
+        throw TelegramError(t, "LEN", std::to_string(t.Len()), "expected 37 or 35");
+    }
+    WriteConfigReply r;
+    r.accepted = t.data[0] == 1;
+    r.config.bytes.assign(t.data.begin() + 1, t.data.end());
+    return r;
+}
+
+MeasuredValues ParseMeasuredValues(const Telegram& t) {
+    ExpectCommand(t, cmd::kScan | cmd::kReplyBit);
+    if (t.data.size() < 2) {
+        throw TelegramError(t, "LEN", std::to_string(t.Len()), "at least 4");
+    }
+    const std::uint16_t header = GetU16(t.data, 0);
+    const std::size_t count = header & 0x3FFU;
+    const std::size_t values_end = 2 + 2 * count;
+    if (t.data.size() < values_end || t.data.size() > values_end + 2) {
+        throw TelegramError(t, "LEN", std::to_string(t.Len()),
+                            "4 + 2 * " + std::to_string(count) +
+                                " values (header count) + 0..2 real-time index bytes");
+    }
+    if ((header & 0x8000U) != 0) {
+        throw TelegramError(t, "header units bits", Hex(header, 4), "00 = cm, 01 = mm");
+    }
+    MeasuredValues v;
+    v.values.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        v.values[i] = GetU16(t.data, 2 + 2 * i);
+    }
+    v.units =
+        (header & 0x4000U) != 0 ? core::RangeUnits::kMillimetre : core::RangeUnits::kCentimetre;
+    v.partial_index = static_cast<std::uint8_t>((header >> 11U) & 0x3U);
+    v.partial = (header & 0x2000U) != 0;
+    v.realtime_index.assign(t.data.begin() + static_cast<std::ptrdiff_t>(values_end), t.data.end());
+    v.status = t.status;
+    return v;
+}
+
+Variant ParseVariantRequest(const Telegram& t) {
+    ExpectCommand(t, cmd::kVariant);
+    ExpectDataSize(t, 4);
+    return Variant{GetU16(t.data, 0), GetU16(t.data, 2)};
+}
+
+ConfigBlock ParseWriteConfigRequest(const Telegram& t) {
+    ExpectCommand(t, cmd::kWriteConfig);
+    if (t.data.size() != ConfigBlock::kLongSize && t.data.size() != ConfigBlock::kShortSize) {
+        throw TelegramError(t, "LEN", std::to_string(t.Len()), "expected 35 or 33");
+    }
+    ConfigBlock c;
+    c.bytes = t.data;
+    return c;
+}
+
+std::string CommandName(std::uint8_t command) { return Hex(command); }
+
+}  // namespace casmap::drivers

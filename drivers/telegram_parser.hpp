@@ -1,0 +1,83 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "drivers/telegram.hpp"
+
+namespace casmap::drivers {
+
+/// Which side's telegrams a parser reads.
+enum class Sender : std::uint8_t {
+    kScanner,  // replies: STX 0x80|address, ACK/NAK bytes between telegrams
+    kHost,     // requests: STX address < 0x80
+};
+
+enum class ParserEvent : std::uint8_t {
+    kTelegram,  // a complete telegram with a good CRC
+    kAckByte,   // a lone 0x06 between telegrams (scanner side only)
+    kNakByte,   // a lone 0x15 between telegrams (scanner side only)
+    kBadCrc,    // a candidate frame whose CRC failed (already counted and rejected)
+};
+
+/// What a parser saw. Every byte is counted once in `bytes` and ends up either in an accepted
+/// telegram, an ACK/NAK, or `dropped_bytes`.
+struct ParserCounters {
+    std::uint64_t bytes = 0;
+    std::uint64_t telegrams = 0;
+    std::uint64_t acks = 0;
+    std::uint64_t naks = 0;
+    std::uint64_t dropped_bytes = 0;
+    std::uint64_t crc_errors = 0;   // candidates with a plausible header and a bad CRC
+    std::uint64_t bad_headers = 0;  // candidates abandoned for address or LEN
+    std::uint64_t timeouts = 0;     // candidates abandoned because the line went quiet
+    /// Episodes of lost synchronisation: a stray byte or an abandoned candidate starts one,
+    /// the next good telegram ends it.
+    std::uint64_t resyncs = 0;
+};
+
+/// Streaming telegram parser. Looks for STX + address, checks LEN (1..kMaxLen) and the CRC.
+/// When a candidate fails, only its first byte is dropped and the rest is parsed again, so a
+/// good telegram hidden behind garbage or a damaged telegram is never lost.
+/// Allocation-free after the first frames (buffers keep their capacity).
+class TelegramParser {
+public:
+    using Callback = std::function<void(ParserEvent event, const Telegram& telegram)>;
+
+    /// `address`: the scanner address whose replies are accepted (0x80 | address on the wire);
+    /// for kHost, requests to 0x00 (broadcast) and to `address` are accepted.
+    explicit TelegramParser(Sender sender, std::uint8_t address = 0);
+
+    /// Parses `bytes`; calls `callback` for each event in order. The Telegram reference is
+    /// valid only during the call.
+    void Feed(std::span<const std::uint8_t> bytes, const Callback& callback);
+    /// The line went quiet: abandons the partial candidate (re-parsing what follows its STX).
+    void Timeout(const Callback& callback);
+    /// True while a candidate frame is being collected.
+    [[nodiscard]] bool InFrame() const { return !frame_.empty(); }
+    /// Drops any partial frame without counting (after a port flush or reconnect).
+    void Reset();
+    [[nodiscard]] const ParserCounters& counters() const { return counters_; }
+
+private:
+    void Step(std::uint8_t byte, const Callback& callback);
+    void Abandon();
+    void Drain(const Callback& callback);
+    void LoseSync();
+    [[nodiscard]] bool AddressOk(std::uint8_t address) const;
+
+    Sender sender_;
+    std::uint8_t address_;
+    std::vector<std::uint8_t> frame_;   // current candidate, starts with STX
+    std::vector<std::uint8_t> replay_;  // bytes to parse (again)
+    std::size_t replay_pos_ = 0;
+    std::size_t expected_size_ = 0;
+    bool out_of_sync_ = false;
+    Telegram telegram_;
+    ParserCounters counters_;
+};
+
+}  // namespace casmap::drivers
