@@ -1,0 +1,642 @@
+#include "sensor_models/lms200_model.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+namespace casmap::sensor_models {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+// sigma of a Gaussian from its full width at half maximum: FWHM = 2 sqrt(2 ln 2) sigma.
+constexpr double kFwhmPerSigma = 2.3548200450309493;
+// Gaussian contributions beyond this many sigma are ignored (exp(-18) ~ 1.5e-8 of the peak).
+constexpr double kCutoffSigmas = 6.0;
+// Hits farther apart than this many sigma form independent waveform segments.
+constexpr double kSegmentGapSigmas = 12.0;
+// Random streams of one pulse.
+constexpr std::uint32_t kStreamPattern = 1;
+constexpr std::uint32_t kStreamReturn = 2;
+constexpr std::uint64_t kBiasTag = 0x6d6174657269616cULL;  // "material"
+
+double DegToRad(double deg) { return deg * std::numbers::pi / 180.0; }
+
+// The waveform f(x) = sum E_i exp(-(x - r_i)^2 / (2 sigma^2)) and its derivative.
+class Waveform {
+public:
+    Waveform(std::span<const EchoSample> samples, double sigma)
+        : samples_(samples), sigma_(sigma), inv_2s2_(0.5 / (sigma * sigma)) {}
+
+    [[nodiscard]] double Value(double x) const {
+        double f = 0.0;
+        for (const EchoSample& s : samples_) {
+            const double d = x - s.range_m;
+            if (std::abs(d) < kCutoffSigmas * sigma_) {
+                f += s.energy * std::exp(-d * d * inv_2s2_);
+            }
+        }
+        return f;
+    }
+    // Sign-carrying derivative up to the positive factor 1 / sigma^2.
+    [[nodiscard]] double Slope(double x) const {
+        double g = 0.0;
+        for (const EchoSample& s : samples_) {
+            const double d = x - s.range_m;
+            if (std::abs(d) < kCutoffSigmas * sigma_) {
+                g -= d * s.energy * std::exp(-d * d * inv_2s2_);
+            }
+        }
+        return g;
+    }
+    // Closed-form integral of f and of x f over [a, b]: the lobe's energy and first moment.
+    void Moments(double a, double b, double& m0, double& m1) const {
+        const double k = sigma_ * std::sqrt(std::numbers::pi / 2.0);
+        const double inv = 1.0 / (std::numbers::sqrt2 * sigma_);
+        m0 = 0.0;
+        m1 = 0.0;
+        for (const EchoSample& s : samples_) {
+            const double da = a - s.range_m;
+            const double db = b - s.range_m;
+            const double i0 = k * (std::erf(db * inv) - std::erf(da * inv));
+            const double i1 =
+                s.range_m * i0 +
+                sigma_ * sigma_ * (std::exp(-da * da * inv_2s2_) - std::exp(-db * db * inv_2s2_));
+            m0 += s.energy * i0;
+            m1 += s.energy * i1;
+        }
+    }
+    [[nodiscard]] double sigma() const { return sigma_; }
+
+private:
+    std::span<const EchoSample> samples_;
+    double sigma_;
+    double inv_2s2_;
+};
+
+// Bisection on the sign of the slope in [a, b]; the waveform rises at a iff rising_at_a.
+double RefineExtremum(const Waveform& w, double a, double b, bool rising_at_a) {
+    for (int it = 0; it < 12; ++it) {
+        const double m = 0.5 * (a + b);
+        if ((w.Slope(m) > 0.0) == rising_at_a) {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    return 0.5 * (a + b);
+}
+
+// Root of Value(x) = c in [a, b] (Value(a) - c and Value(b) - c of opposite sign):
+// Illinois regula falsi to 0.05 mm.
+double Crossing(const Waveform& w, double a, double b, double c) {
+    double fa = w.Value(a) - c;
+    double fb = w.Value(b) - c;
+    int side = 0;
+    for (int it = 0; it < 40 && std::abs(b - a) > 5e-5; ++it) {
+        const double x = (fb - fa) != 0.0 ? b - fb * (b - a) / (fb - fa) : 0.5 * (a + b);
+        const double fx = w.Value(x) - c;
+        if ((fx > 0.0) == (fb > 0.0)) {
+            b = x;
+            fb = fx;
+            if (side == -1) {
+                fa *= 0.5;
+            }
+            side = -1;
+        } else {
+            a = x;
+            fa = fx;
+            if (side == 1) {
+                fb *= 0.5;
+            }
+            side = 1;
+        }
+        if (fx == 0.0) {
+            return x;
+        }
+    }
+    return std::abs(fa) < std::abs(fb) ? a : b;
+}
+
+// Steps outward from `from` by one sigma until the waveform falls below c; returns the bound.
+double OuterBound(const Waveform& w, double from, double dir, double c) {
+    double inner = from;
+    double outer = from + dir * w.sigma();
+    for (int it = 0; it < 64 && w.Value(outer) >= c; ++it) {
+        inner = outer;
+        outer += dir * w.sigma();
+    }
+    return Crossing(w, std::min(inner, outer), std::max(inner, outer), c);
+}
+
+// Lobes of one segment (hits closer than kSegmentGapSigmas apart).
+std::size_t SegmentLobes(std::span<const EchoSample> seg,
+                         double sigma,
+                         double bound_fraction,
+                         std::span<Lobe> out) {
+    const Waveform w(seg, sigma);
+    // Extrema lie between the first and last hit; f rises before the first and falls after
+    // the last. Scan the slope's sign on a sigma/4 grid and refine each change.
+    std::array<double, 2 * kMaxSubrays + 2> maxima{};
+    std::array<double, 2 * kMaxSubrays + 2> minima{};
+    std::size_t n_max = 0;
+    std::size_t n_min = 0;
+    const double first = seg.front().range_m;
+    const double last = seg.back().range_m;
+    const double h = 0.25 * sigma;
+    const auto steps = static_cast<std::size_t>(std::ceil((last - first) / h));
+    if (steps == 0) {
+        maxima[n_max++] = first;
+    } else {
+        double x_prev = first;
+        bool rising_prev = true;  // f' > 0 left of every hit
+        for (std::size_t k = 1; k <= steps; ++k) {
+            const double x = k == steps ? last : first + static_cast<double>(k) * h;
+            const bool rising = k == steps ? false : w.Slope(x) > 0.0;
+            if (rising != rising_prev) {
+                const double e = RefineExtremum(w, x_prev, x, rising_prev);
+                if (rising_prev && n_max < maxima.size()) {
+                    maxima[n_max++] = e;
+                } else if (!rising_prev && n_min < minima.size()) {
+                    minima[n_min++] = e;
+                }
+            }
+            x_prev = x;
+            rising_prev = rising;
+        }
+    }
+    std::size_t count = 0;
+    for (std::size_t j = 0; j < n_max && count < out.size(); ++j) {
+        Lobe lobe;
+        lobe.peak_range_m = maxima[j];
+        lobe.peak = w.Value(maxima[j]);
+        const double c = bound_fraction * lobe.peak;
+        if (j == 0) {
+            lobe.lo_m = OuterBound(w, maxima[j], -1.0, c);
+        } else {
+            const double m = minima[j - 1];
+            lobe.lo_m = w.Value(m) >= c ? m : Crossing(w, m, maxima[j], c);
+        }
+        if (j + 1 >= n_max || j >= n_min) {
+            lobe.hi_m = OuterBound(w, maxima[j], 1.0, c);
+        } else {
+            const double m = minima[j];
+            lobe.hi_m = w.Value(m) >= c ? m : Crossing(w, maxima[j], m, c);
+        }
+        double m0 = 0.0;
+        double m1 = 0.0;
+        w.Moments(lobe.lo_m, lobe.hi_m, m0, m1);
+        lobe.centroid_m = m0 > 0.0 ? m1 / m0 : lobe.peak_range_m;
+        out[count++] = lobe;
+    }
+    return count;
+}
+
+}  // namespace
+
+std::uint64_t SplitMix64(std::uint64_t x) {
+    std::uint64_t z = x + 0x9E3779B97F4A7C15ULL;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
+
+PulseRng::PulseRng(std::uint64_t seed,
+                   std::uint64_t scan_index,
+                   std::uint32_t beam,
+                   std::uint32_t stream) {
+    std::uint64_t s = SplitMix64(seed);
+    s = SplitMix64(s ^ scan_index);
+    s = SplitMix64(s ^ ((static_cast<std::uint64_t>(beam) << 8) | stream));
+    state_ = s;
+}
+
+std::uint64_t PulseRng::NextU64() {
+    state_ += 0x9E3779B97F4A7C15ULL;
+    return SplitMix64(state_);
+}
+
+double PulseRng::Uniform() { return static_cast<double>(NextU64() >> 11) * 0x1.0p-53; }
+
+double PulseRng::Normal() {
+    const double u1 = 1.0 - Uniform();  // (0, 1]
+    const double u2 = Uniform();
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(kTwoPi * u2);
+}
+
+std::size_t WaveformLobes(std::span<const EchoSample> sorted,
+                          double echo_width_m,
+                          double bound_fraction,
+                          std::span<Lobe> out) {
+    const double sigma = echo_width_m / kFwhmPerSigma;
+    std::size_t count = 0;
+    std::size_t begin = 0;
+    while (begin < sorted.size() && count < out.size()) {
+        std::size_t end = begin + 1;
+        while (end < sorted.size() &&
+               sorted[end].range_m - sorted[end - 1].range_m <= kSegmentGapSigmas * sigma) {
+            ++end;
+        }
+        count += SegmentLobes(sorted.subspan(begin, end - begin), sigma, bound_fraction,
+                              out.subspan(count));
+        begin = end;
+    }
+    return count;
+}
+
+Lobe CompactLobe(std::span<const EchoSample> sorted, double echo_width_m) {
+    const double sigma = echo_width_m / kFwhmPerSigma;
+    double e = 0.0;
+    double m1 = 0.0;
+    for (const EchoSample& s : sorted) {
+        e += s.energy;
+        m1 += s.energy * s.range_m;
+    }
+    Lobe lobe;
+    if (!(e > 0.0)) {
+        return lobe;
+    }
+    const double mean = m1 / e;
+    double var = 0.0;
+    for (const EchoSample& s : sorted) {
+        var += s.energy * (s.range_m - mean) * (s.range_m - mean);
+    }
+    var /= e;
+    lobe.peak = e * std::exp(-var / (2.0 * sigma * sigma));
+    lobe.peak_range_m = mean;
+    lobe.centroid_m = mean;
+    lobe.lo_m = sorted.front().range_m;
+    lobe.hi_m = sorted.back().range_m;
+    return lobe;
+}
+
+void SubrayWeights(int subrays_per_pulse, std::span<double> weights) {
+    // Ring radii (units of the 1/e^2 radius), ray counts and annulus bounds, [A] sensor_model
+    // section 4.1. The 37-ray pattern adds a ring at 1.0 with the annulus [0.9, 1.1].
+    static constexpr std::array<int, 4> kCounts = {1, 6, 12, 18};
+    int rings = 0;
+    std::array<double, 5> bounds{};
+    switch (subrays_per_pulse) {
+        case 1:
+            rings = 1;
+            bounds = {0.0, 1.0};
+            break;
+        case 7:
+            rings = 2;
+            bounds = {0.0, 0.2, 1.0};
+            break;
+        case 19:
+            rings = 3;
+            bounds = {0.0, 0.2, 0.6, 1.0};
+            break;
+        default:
+            rings = 4;
+            bounds = {0.0, 0.2, 0.6, 0.9, 1.1};
+            break;
+    }
+    const auto energy = [](double rho) { return std::exp(-2.0 * rho * rho); };
+    const double total = energy(0.0) - energy(bounds[static_cast<std::size_t>(rings)]);
+    std::size_t i = 0;
+    for (int r = 0; r < rings; ++r) {
+        const auto ring = static_cast<std::size_t>(r);
+        const double e = (energy(bounds[ring]) - energy(bounds[ring + 1])) / total;
+        for (int k = 0; k < kCounts[ring] && i < weights.size(); ++k) {
+            weights[i++] = e / kCounts[ring];
+        }
+    }
+}
+
+Lms200Model::Lms200Model(const Lms200Config& config, std::uint64_t seed)
+    : config_(config), seed_(seed) {
+    config_.Validate();
+    beam_count_ = static_cast<std::size_t>(
+                      std::lround(config_.field_of_view_deg / config_.angular_resolution_deg)) +
+                  1;
+    turns_ = static_cast<int>(std::lround(1.0 / config_.angular_resolution_deg));
+    subray_count_ = config_.ideal ? 1 : static_cast<std::size_t>(config_.subrays_per_pulse);
+    SubrayWeights(static_cast<int>(subray_count_), std::span<double>(weights_, subray_count_));
+    // Ring pattern: ring k at rho = 0, 0.4, 0.8, 1.0 with 1, 6, 12, 18 rays evenly spaced.
+    static constexpr std::array<double, 4> kRho = {0.0, 0.4, 0.8, 1.0};
+    static constexpr std::array<int, 4> kCounts = {1, 6, 12, 18};
+    std::size_t i = 0;
+    for (std::size_t ring = 0; ring < kRho.size() && i < subray_count_; ++ring) {
+        for (int k = 0; k < kCounts[ring] && i < subray_count_; ++k, ++i) {
+            ring_rho_[i] = kRho[ring];
+            ring_phase_[i] = kTwoPi * static_cast<double>(k) / static_cast<double>(kCounts[ring]);
+        }
+    }
+}
+
+double Lms200Model::StartAngleRad() const { return DegToRad(-0.5 * config_.field_of_view_deg); }
+
+double Lms200Model::AngleStepRad() const { return DegToRad(config_.angular_resolution_deg); }
+
+double Lms200Model::BeamAngleRad(std::size_t beam) const {
+    return StartAngleRad() + static_cast<double>(beam) * AngleStepRad();
+}
+
+double Lms200Model::BeamTimeOffsetS(std::size_t beam) const {
+    // Turn k of an interleaved scan measures the angles offset by k x resolution (partial-scan
+    // index, sicktoolbox GetSickPartialScan); within a turn the mirror sweeps 360 deg per 1/75 s.
+    const double turn = static_cast<double>(beam % static_cast<std::size_t>(turns_));
+    const double angle_deg = static_cast<double>(beam) * config_.angular_resolution_deg;
+    return (turn + angle_deg / 360.0) * core::Lms200Timing::kTurnPeriodS;
+}
+
+double Lms200Model::ScanPeriodS() const {
+    return static_cast<double>(turns_) * core::Lms200Timing::kTurnPeriodS;
+}
+
+core::Scan Lms200Model::MakeScan(double stamp_s) const {
+    core::Scan scan;
+    scan.stamp_s = stamp_s;
+    scan.start_angle_rad = StartAngleRad();
+    scan.angle_step_rad = AngleStepRad();
+    scan.beam_period_s = config_.angular_resolution_deg / 360.0 * core::Lms200Timing::kTurnPeriodS;
+    if (turns_ > 1) {
+        scan.beam_time_offset_s.resize(beam_count_);
+        for (std::size_t i = 0; i < beam_count_; ++i) {
+            scan.beam_time_offset_s[i] = BeamTimeOffsetS(i);
+        }
+    }
+    scan.beams.resize(beam_count_);
+    return scan;
+}
+
+void Lms200Model::PulseSubrays(std::uint64_t scan_index,
+                               std::size_t beam,
+                               std::span<Subray> out) const {
+    const double phi = BeamAngleRad(beam);
+    const Eigen::Vector3d axis(std::cos(phi), std::sin(phi), 0.0);
+    const Eigen::Vector3d u1(-std::sin(phi), std::cos(phi), 0.0);  // in the scan plane
+    const Eigen::Vector3d u2 = Eigen::Vector3d::UnitZ();           // across it
+    double rotation = 0.0;
+    if (config_.rotate_pattern_per_pulse && subray_count_ > 1) {
+        PulseRng rng(seed_, scan_index, static_cast<std::uint32_t>(beam), kStreamPattern);
+        rotation = kTwoPi * rng.Uniform();
+    }
+    // A cone from the exit aperture: at range r the ray at normalised radius rho sits at
+    // rho * (D0 + theta r) / 2 from the axis (sensor_model.md 4.1).
+    const double a0 = 0.5 * config_.spot_diameter_at_exit_m;
+    const double half_div = 0.5 * config_.divergence_rad;
+    for (std::size_t i = 0; i < out.size() && i < subray_count_; ++i) {
+        const double rho = ring_rho_[i];
+        if (rho == 0.0) {
+            out[i].origin.setZero();
+            out[i].direction = axis;
+            continue;
+        }
+        const double psi = ring_phase_[i] + rotation;
+        const Eigen::Vector3d t = std::cos(psi) * u1 + std::sin(psi) * u2;
+        out[i].origin = rho * a0 * t;
+        out[i].direction = (axis + rho * half_div * t).normalized();
+    }
+}
+
+double Lms200Model::MaterialBiasM(std::uint32_t surface_id) const {
+    const std::uint64_t h = SplitMix64(SplitMix64(seed_ ^ kBiasTag) ^ surface_id);
+    const double u = static_cast<double>(h >> 11) * 0x1.0p-53;
+    return (2.0 * u - 1.0) * config_.MaterialBiasMaxM();
+}
+
+PulseResult Lms200Model::IdealReturn(std::span<const SubrayHit> hits) const {
+    PulseResult r;
+    const core::Lms200Format& f = config_.format;
+    if (hits.empty() || !hits[0].valid() || hits[0].distance_m > config_.max_trace_range_m) {
+        r.beam.status = core::BeamStatus::kNoReturn;
+        r.beam.raw = f.CodeFor(core::BeamStatus::kNoReturn);
+        r.label = core::BeamLabel::kNoTarget;
+        return r;
+    }
+    r.true_range_m = static_cast<float>(hits[0].distance_m);
+    r.echo_range_m = hits[0].distance_m;
+    r.beam.status = core::BeamStatus::kOk;
+    r.beam.range_m = r.true_range_m;
+    r.beam.raw = f.EncodeRange(hits[0].distance_m);
+    r.label = core::BeamLabel::kValid;
+    return r;
+}
+
+void Lms200Model::SetCode(core::BeamStatus status, core::BeamLabel label, PulseResult& out) const {
+    out.beam.status = status;
+    out.beam.range_m = 0.0F;
+    out.beam.raw = config_.format.CodeFor(status);
+    out.label = label;
+}
+
+void Lms200Model::SetSpike(double range_m, PulseResult& out) const {
+    const core::Lms200Format& f = config_.format;
+    const double units =
+        std::clamp(std::round(range_m / f.UnitM()), 0.0,
+                   static_cast<double>(f.CodeFor(core::BeamStatus::kOutOfRange) - 1));
+    out.beam.raw = static_cast<std::uint16_t>(units);
+    out.beam.status = core::BeamStatus::kOk;
+    out.beam.range_m = static_cast<float>(units * f.UnitM());
+    out.label = core::BeamLabel::kSpike;
+}
+
+void Lms200Model::Encode(double range_m,
+                         PulseRng& rng,
+                         core::BeamLabel lost,
+                         PulseResult& out) const {
+    const core::Lms200Format& f = config_.format;
+    const double units = std::max(0.0, std::round(range_m / f.UnitM()));
+    if (units >= static_cast<double>(f.CodeFor(core::BeamStatus::kOutOfRange))) {
+        // Over-range: the 16 m mode's undetected overflow keeps the low 14 bits (the paper's
+        // very short spurious ranges outdoors, sensor_model.md 1.2); otherwise "value > max".
+        if (f.mode == core::RangeMode::k16m && config_.wrap_enabled &&
+            rng.Uniform() < config_.p_wrap) {
+            const auto raw =
+                static_cast<std::uint16_t>(static_cast<std::uint64_t>(units) & f.ValueMask());
+            out.beam = f.Decode(raw);
+            out.label = core::BeamLabel::kSpike;
+            return;
+        }
+        SetCode(core::BeamStatus::kOutOfRange, lost, out);
+        return;
+    }
+    out.beam.raw = static_cast<std::uint16_t>(units);
+    out.beam.status = core::BeamStatus::kOk;
+    out.beam.range_m = static_cast<float>(units * f.UnitM());
+}
+
+PulseResult Lms200Model::FormReturn(const PulseContext& pulse,
+                                    std::span<const SubrayHit> hits) const {
+    if (config_.ideal) {
+        return IdealReturn(hits);
+    }
+    PulseResult r;
+    const core::Lms200Format& f = config_.format;
+    const double max_range = f.MaxRangeM();
+    if (!hits.empty() && hits[0].valid()) {
+        r.true_range_m = static_cast<float>(hits[0].distance_m);
+    }
+    // Echo energies, Lambertian lidar equation E = w rho cos(theta) / r^2, scaled so that a
+    // full-footprint 10 % target at R10 gives exactly the threshold 1 (sensor_model.md 4.2).
+    // Sorted by range (insertion sort; at most 37 entries).
+    std::array<EchoSample, kMaxSubrays> samples{};
+    std::array<std::size_t, kMaxSubrays> source{};
+    std::size_t n = 0;
+    double in_range_weight = 0.0;
+    const double scale = config_.r10_m * config_.r10_m / config_.r10_reflectivity;
+    const std::size_t count = std::min(hits.size(), subray_count_);
+    for (std::size_t i = 0; i < count; ++i) {
+        const SubrayHit& h = hits[i];
+        if (!h.valid() || h.distance_m > config_.max_trace_range_m) {
+            continue;
+        }
+        if (h.distance_m <= max_range) {
+            in_range_weight += weights_[i];
+        }
+        const double d = std::max(h.distance_m, 1e-3);
+        const EchoSample e{
+            h.distance_m,
+            weights_[i] * h.reflectivity * std::clamp(h.cos_incidence, 0.0, 1.0) * scale / (d * d)};
+        std::size_t j = n++;
+        for (; j > 0 && samples[j - 1].range_m > e.range_m; --j) {
+            samples[j] = samples[j - 1];
+            source[j] = source[j - 1];
+        }
+        samples[j] = e;
+        source[j] = i;
+    }
+    const bool target = in_range_weight >= config_.target_min_weight - 1e-12;
+    const core::BeamLabel lost = target ? core::BeamLabel::kMissing : core::BeamLabel::kNoTarget;
+    PulseRng rng(seed_, pulse.scan_index, pulse.beam, kStreamReturn);
+
+    // Short and random spikes (Probabilistic Robotics beam-model structure, [A]).
+    if (config_.spikes_enabled) {
+        const double u_rand = rng.Uniform();
+        const double u_short = rng.Uniform();
+        const double u_value = rng.Uniform();
+        const double r_min = config_.min_range_m;
+        if (u_rand < config_.p_rand) {
+            SetSpike(r_min + u_value * (max_range - r_min), r);
+            return r;
+        }
+        if (target && u_short < config_.p_short) {
+            const double near = std::max(samples[0].range_m, r_min);
+            SetSpike(r_min + u_value * (near - r_min), r);
+            return r;
+        }
+    }
+    if (config_.dropout_enabled && rng.Uniform() < config_.p_dropout) {
+        SetCode(core::BeamStatus::kNoReturn, lost, r);
+        return r;
+    }
+    if (config_.sun_enabled) {
+        const double c =
+            pulse.beam_direction_world.normalized().dot(config_.sun_direction_world.normalized());
+        if (c >= std::cos(DegToRad(config_.sun_cone_deg))) {
+            SetCode(core::BeamStatus::kDazzle, lost, r);
+            return r;
+        }
+        if (rng.Uniform() < config_.p_sun * config_.sun_irradiance_w_m2 / 1000.0) {
+            SetCode(core::BeamStatus::kNoReturn, lost, r);
+            return r;
+        }
+    }
+    if (n == 0) {
+        SetCode(core::BeamStatus::kNoReturn, core::BeamLabel::kNoTarget, r);
+        return r;
+    }
+
+    // Return formation: the first lobe that passes the detection threshold.
+    const std::span<const EchoSample> sorted(samples.data(), n);
+    std::array<Lobe, kMaxSubrays> lobes{};
+    std::size_t n_lobes = 0;
+    if (config_.return_algorithm == ReturnAlgorithm::kAuto &&
+        samples[n - 1].range_m - samples[0].range_m <= config_.compact_spread_m) {
+        lobes[0] = CompactLobe(sorted, config_.echo_width_m);
+        n_lobes = 1;
+    } else {
+        n_lobes = WaveformLobes(sorted, config_.echo_width_m, config_.lobe_bound_fraction, lobes);
+    }
+    const Lobe* echo = nullptr;
+    double strongest = 0.0;
+    for (std::size_t j = 0; j < n_lobes && echo == nullptr; ++j) {
+        const double peak = lobes[j].peak;
+        strongest = std::max(strongest, peak);
+        bool detected = peak >= 1.0;
+        if (config_.soft_threshold) {
+            // Logistic in 10 log10(E / T) with a soft_edge_db scale ([A], sensor_model.md 4.4).
+            const double db = peak > 0.0 ? 10.0 * std::log10(peak) : -300.0;
+            detected = rng.Uniform() < 1.0 / (1.0 + std::exp(-db / config_.soft_edge_db));
+        }
+        if (detected) {
+            echo = &lobes[j];
+        }
+    }
+    if (echo == nullptr) {
+        for (std::size_t j = 0; j < n_lobes; ++j) {
+            strongest = std::max(strongest, lobes[j].peak);
+        }
+        SetCode(strongest >= config_.low_signal_fraction ? core::BeamStatus::kLowSignal
+                                                         : core::BeamStatus::kNoReturn,
+                lost, r);
+        return r;
+    }
+    r.echo_range_m = echo->centroid_m;
+    if (echo->centroid_m < config_.min_range_m) {
+        SetCode(core::BeamStatus::kNoReturn, lost, r);
+        return r;
+    }
+
+    // Noise and bias only on a valid echo (sensor_model.md 4.5).
+    double measured = echo->centroid_m;
+    if (config_.bias_enabled) {
+        // The lobe's strongest contributor decides the material.
+        std::size_t dominant = 0;
+        double best = -1.0;
+        for (std::size_t k = 0; k < n; ++k) {
+            const bool inside =
+                samples[k].range_m >= echo->lo_m && samples[k].range_m <= echo->hi_m;
+            if (inside && samples[k].energy > best) {
+                best = samples[k].energy;
+                dominant = k;
+            }
+        }
+        const SubrayHit& h = hits[source[dominant]];
+        measured += MaterialBiasM(h.surface_id);
+        if (h.reflectivity < config_.dark_bias_reflectivity) {
+            measured +=
+                config_.dark_bias_m * (1.0 - h.reflectivity / config_.dark_bias_reflectivity);
+        }
+    }
+    if (config_.drift_enabled) {
+        measured += config_.drift_amplitude_m *
+                    (1.0 - std::exp(-std::max(0.0, pulse.time_s) / config_.drift_time_constant_s));
+    }
+    if (config_.noise_enabled) {
+        const double gain =
+            std::clamp(std::sqrt(1.0 / echo->peak), 1.0, config_.noise_sigma_cap_factor);
+        measured += config_.NoiseSigma0M() * gain * rng.Normal();
+    }
+    Encode(measured, rng, lost, r);
+    if (r.beam.status != core::BeamStatus::kOk || r.label == core::BeamLabel::kSpike) {
+        return r;
+    }
+
+    // Truth: surfaces are runs of sub-ray hits chained by gaps <= tol; the echo is mixed when
+    // its noise-free range is farther than tol from every surface (docs/sensor-model.md).
+    const double tol = config_.mixed_tolerance_m;
+    double nearest = std::numeric_limits<double>::infinity();
+    double lo = samples[0].range_m;
+    double hi = lo;
+    for (std::size_t k = 1; k <= n; ++k) {
+        if (k < n && samples[k].range_m - hi <= tol) {
+            hi = samples[k].range_m;
+            continue;
+        }
+        const double c = echo->centroid_m;
+        nearest = std::min(nearest, c < lo ? lo - c : (c > hi ? c - hi : 0.0));
+        if (k < n) {
+            lo = samples[k].range_m;
+            hi = lo;
+        }
+    }
+    r.label = nearest > tol ? core::BeamLabel::kMixed : core::BeamLabel::kValid;
+    return r;
+}
+
+}  // namespace casmap::sensor_models
