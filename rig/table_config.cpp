@@ -1,0 +1,262 @@
+// TableConfig validation, motion names, commands, geometry and run planning (no Bullet here).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "core/input_error.hpp"
+#include "rig/table.hpp"
+
+namespace casmap::rig {
+
+namespace {
+
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+
+std::optional<ConfigViolation> Check(bool ok,
+                                     const std::string& field,
+                                     double value,
+                                     const std::string& rule) {
+    if (ok && std::isfinite(value)) {
+        return std::nullopt;
+    }
+    return ConfigViolation{field, FormatNumber(value), rule};
+}
+
+/// Rules shared by both rotary profiles: period, amplitude, rate limit, range.
+std::optional<ConfigViolation> CheckProfile(const AngleProfile& p,
+                                            const std::string& field,
+                                            double min_deg,
+                                            double max_deg) {
+    if (auto v = Check(p.period_s > 0.0, field + ".period_s", p.period_s, "must be > 0")) {
+        return v;
+    }
+    if (auto v = Check(p.amplitude_deg >= 0.0, field + ".amplitude_deg", p.amplitude_deg,
+                       "must be >= 0")) {
+        return v;
+    }
+    if (auto v = Check(std::isfinite(p.phase_deg), field + ".phase_deg", p.phase_deg,
+                       "must be finite")) {
+        return v;
+    }
+    const std::string range =
+        "allowed: " + FormatNumber(min_deg) + ".." + FormatNumber(max_deg) + " deg";
+    if (auto v = Check(p.center_deg >= min_deg && p.center_deg <= max_deg, field + ".center_deg",
+                       p.center_deg, range)) {
+        return v;
+    }
+    if (auto v = Check(
+            p.center_deg - p.amplitude_deg >= min_deg && p.center_deg + p.amplitude_deg <= max_deg,
+            field + ".amplitude_deg", p.amplitude_deg,
+            range + " (centre " + FormatNumber(p.center_deg) + ")")) {
+        return v;
+    }
+    const double rate = PeakRateDegS(p);
+    if (rate > TableLimits::kMaxRateDegS) {
+        return ConfigViolation{field + ".period_s", FormatNumber(p.period_s),
+                               "peak rate " + FormatNumber(rate) + " deg/s exceeds the " +
+                                   FormatNumber(TableLimits::kMaxRateDegS) + " deg/s limit"};
+    }
+    return std::nullopt;
+}
+
+std::optional<ConfigViolation> CheckCourse(const CourseConfig& c) {
+    if (auto v = Check(std::isfinite(c.start_x_m), "table.course.start_x_m", c.start_x_m,
+                       "must be finite")) {
+        return v;
+    }
+    if (auto v = Check(c.end_x_m > c.start_x_m, "table.course.end_x_m", c.end_x_m,
+                       "must be > course.start_x_m")) {
+        return v;
+    }
+    if (auto v = Check(std::abs(c.lateral_offset_m) < 100.0, "table.course.lateral_offset_m",
+                       c.lateral_offset_m, "must be finite, |y| < 100 m")) {
+        return v;
+    }
+    return Check(c.width_m > 0.0, "table.course.width_m", c.width_m, "must be > 0");
+}
+
+std::optional<ConfigViolation> CheckMechanism(const TableConfig& c) {
+    if (auto v = Check(c.physics_rate_hz >= 100.0 && c.physics_rate_hz <= 100000.0,
+                       "table.physics_rate_hz", c.physics_rate_hz, "allowed: 100..100000 Hz")) {
+        return v;
+    }
+    if (auto v = Check(c.output_decimation >= 1, "table.output_decimation", c.output_decimation,
+                       "must be >= 1")) {
+        return v;
+    }
+    if (auto v = Check(c.speed_m_s > 0.0 && c.speed_m_s <= TableLimits::kMaxSpeedMS,
+                       "table.speed_m_s", c.speed_m_s, "allowed: 0 < v <= 1 m/s")) {
+        return v;
+    }
+    if (auto v = Check(c.speed_ramp_s > 0.0 && c.speed_ramp_s <= 60.0, "table.speed_ramp_s",
+                       c.speed_ramp_s, "allowed: 0 < ramp <= 60 s")) {
+        return v;
+    }
+    if (auto v = Check(c.sensor_height_m > 0.0 && c.sensor_height_m <= 10.0,
+                       "table.sensor_height_m", c.sensor_height_m, "allowed: 0 < h <= 10 m")) {
+        return v;
+    }
+    if (auto v = Check(c.mount_pitch_deg >= TableLimits::kMinPitchDeg &&
+                           c.mount_pitch_deg <= TableLimits::kMaxPitchDeg,
+                       "table.mount_pitch_deg", c.mount_pitch_deg, "allowed: 25..40 deg")) {
+        return v;
+    }
+    for (int i = 0; i < 3; ++i) {
+        if (auto v = Check(std::abs(c.pitch_to_roll_m[i]) <= 1.0, "table.pitch_to_roll_m",
+                           c.pitch_to_roll_m[i], "each component within +-1 m")) {
+            return v;
+        }
+    }
+    if (auto v = Check(c.roll_to_sensor_m >= 0.0 && c.roll_to_sensor_m <= 1.0,
+                       "table.roll_to_sensor_m", c.roll_to_sensor_m, "allowed: 0..1 m")) {
+        return v;
+    }
+    return Check(c.max_range_m > 0.0 && c.max_range_m <= 80.0, "table.max_range_m", c.max_range_m,
+                 "allowed: 0 < r <= 80 m");
+}
+
+std::optional<ConfigViolation> CheckCompliance(const TableConfig& c) {
+    if (!c.compliance.enabled) {
+        return std::nullopt;
+    }
+    // Explicit spring-damper: keep wn dt small so the integration stays stable.
+    const double max_hz = 0.05 * c.physics_rate_hz;
+    if (auto v = Check(
+            c.compliance.natural_frequency_hz > 0.0 && c.compliance.natural_frequency_hz <= max_hz,
+            "table.compliance.natural_frequency_hz", c.compliance.natural_frequency_hz,
+            "allowed: 0 < f <= physics_rate_hz / 20 = " + FormatNumber(max_hz))) {
+        return v;
+    }
+    return Check(c.compliance.damping_ratio >= 0.0 && c.compliance.damping_ratio <= 2.0,
+                 "table.compliance.damping_ratio", c.compliance.damping_ratio, "allowed: 0..2");
+}
+
+}  // namespace
+
+Motion ParseMotion(const std::string& text, const std::string& field) {
+    if (text == "T") {
+        return Motion::kT;
+    }
+    if (text == "TR") {
+        return Motion::kTR;
+    }
+    if (text == "TP") {
+        return Motion::kTP;
+    }
+    if (text == "TRP") {
+        return Motion::kTRP;
+    }
+    throw MakeInputError("", field, text, "allowed: T, TR, TP, TRP");
+}
+
+const char* MotionName(Motion motion) {
+    switch (motion) {
+        case Motion::kT:
+            return "T";
+        case Motion::kTR:
+            return "TR";
+        case Motion::kTP:
+            return "TP";
+        case Motion::kTRP:
+            return "TRP";
+    }
+    return "?";
+}
+
+std::optional<ConfigViolation> TableConfig::FirstViolation() const {
+    if (auto v = CheckMechanism(*this)) {
+        return v;
+    }
+    if (auto v = CheckCourse(course)) {
+        return v;
+    }
+    if (auto v = CheckProfile(roll_profile, "table.roll_profile", -TableLimits::kMaxAbsRollDeg,
+                              TableLimits::kMaxAbsRollDeg)) {
+        return v;
+    }
+    if (auto v = CheckProfile(pitch_profile, "table.pitch_profile", TableLimits::kMinPitchDeg,
+                              TableLimits::kMaxPitchDeg)) {
+        return v;
+    }
+    return CheckCompliance(*this);
+}
+
+void TableConfig::Validate(const std::string& where) const {
+    ThrowIfViolated(FirstViolation(), where);
+}
+
+AngleProfile RollCommand(const TableConfig& config, Motion motion) {
+    if (motion == Motion::kTR || motion == Motion::kTRP) {
+        return config.roll_profile;
+    }
+    return AngleProfile{ProfileShape::kSinusoid, 0.0, 0.0, 1.0, 0.0};
+}
+
+AngleProfile PitchCommand(const TableConfig& config, Motion motion) {
+    if (motion == Motion::kTP || motion == Motion::kTRP) {
+        return config.pitch_profile;
+    }
+    return AngleProfile{ProfileShape::kSinusoid, config.mount_pitch_deg, 0.0, 1.0, 0.0};
+}
+
+TableGeometry GeometryOf(const TableConfig& config) {
+    TableGeometry geometry;
+    geometry.pitch_to_roll_m = config.pitch_to_roll_m;
+    geometry.roll_to_sensor_m = config.roll_to_sensor_m;
+    geometry.pitch_axis_origin_m = Eigen::Vector3d::Zero();
+    const core::Pose nominal =
+        TableForwardKinematics(geometry, TableJoints{0.0, 0.0, config.mount_pitch_deg * kDegToRad});
+    geometry.pitch_axis_origin_m.z() = config.sensor_height_m - nominal.translation.z();
+    return geometry;
+}
+
+SpeedSchedule PlanCarriage(const TableConfig& config, Motion motion) {
+    config.Validate();
+    const TableGeometry geometry = GeometryOf(config);
+    const AngleProfile roll = RollCommand(config, motion);
+    const AngleProfile pitch = PitchCommand(config, motion);
+    const CourseConfig& course = config.course;
+    // Floor hits (z = 0) of every beam over the attitude envelope, relative to the carriage.
+    double min_ahead = std::numeric_limits<double>::infinity();
+    double max_ahead = -min_ahead;
+    constexpr int kSteps = 8;
+    for (int i = 0; i <= kSteps; ++i) {
+        for (int j = 0; j <= kSteps; ++j) {
+            const double r = roll.center_deg + roll.amplitude_deg * (2.0 * i / kSteps - 1.0);
+            const double p = pitch.center_deg + pitch.amplitude_deg * (2.0 * j / kSteps - 1.0);
+            const core::Pose pose =
+                TableForwardKinematics(geometry, TableJoints{0.0, r * kDegToRad, p * kDegToRad});
+            for (int b = 0; b <= 360; ++b) {
+                const double a = (-90.0 + 0.5 * b) * kDegToRad;
+                const Eigen::Vector3d dir =
+                    pose.rotation * Eigen::Vector3d(std::cos(a), std::sin(a), 0.0);
+                if (dir.z() > -1e-9) {
+                    continue;
+                }
+                const double range = -pose.translation.z() / dir.z();
+                const Eigen::Vector3d hit = pose.translation + range * dir;
+                if (range <= config.max_range_m &&
+                    std::abs(hit.y() - course.lateral_offset_m) <= 0.5 * course.width_m) {
+                    min_ahead = std::min(min_ahead, hit.x());
+                    max_ahead = std::max(max_ahead, hit.x());
+                }
+            }
+        }
+    }
+    if (!std::isfinite(min_ahead)) {
+        throw MakeInputError("table config", "table.course.lateral_offset_m",
+                             FormatNumber(course.lateral_offset_m),
+                             "no beam within max_range_m reaches the course's floor strip");
+    }
+    SpeedSchedule schedule;
+    schedule.speed_m_s = config.speed_m_s;
+    schedule.ramp_s = config.speed_ramp_s;
+    const double ramp_distance = 0.5 * config.speed_m_s * config.speed_ramp_s;
+    schedule.start_m = course.start_x_m - max_ahead - ramp_distance;
+    const double cruise_m = (course.end_x_m - min_ahead) - (course.start_x_m - max_ahead);
+    schedule.cruise_s = cruise_m / config.speed_m_s;
+    return schedule;
+}
+
+}  // namespace casmap::rig
