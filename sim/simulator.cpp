@@ -1,0 +1,137 @@
+#include "sim/simulator.hpp"
+
+#include <array>
+#include <cmath>
+#include <span>
+#include <sstream>
+#include <string>
+
+#include "core/input_error.hpp"
+#include "core/parallel.hpp"
+
+namespace casmap::sim {
+namespace {
+
+using sensor_models::kMaxSubrays;
+using sensor_models::Lms200Model;
+using sensor_models::PulseContext;
+using sensor_models::PulseResult;
+
+// Fills beam i of `out` from a pose per beam time.
+template <class PoseAtBeam>
+ScanResult CastScanImpl(const World& world,
+                        const Lms200Model& model,
+                        double stamp_s,
+                        std::uint64_t scan_index,
+                        const PoseAtBeam& pose_at) {
+    ScanResult out;
+    out.scan = model.MakeScan(stamp_s);
+    const std::size_t n = model.BeamCount();
+    out.truth.labels.resize(n);
+    out.truth.true_range_m.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        PulseContext pulse;
+        pulse.scan_index = scan_index;
+        pulse.beam = static_cast<std::uint32_t>(i);
+        pulse.time_s = out.scan.BeamTime(i);
+        const PulseResult r = CastPulse(world, model, pose_at(i, pulse.time_s), pulse);
+        out.scan.beams[i] = r.beam;
+        out.truth.labels[i] = r.label;
+        out.truth.true_range_m[i] = r.true_range_m;
+    }
+    return out;
+}
+
+std::string Seconds(double s) {
+    std::ostringstream o;
+    o.precision(9);
+    o << s;
+    return o.str();
+}
+
+}  // namespace
+
+PulseResult CastPulse(const World& world,
+                      const Lms200Model& model,
+                      const core::Pose& world_T_sensor,
+                      PulseContext pulse) {
+    const std::size_t n = model.SubrayCount();
+    std::array<sensor_models::Subray, kMaxSubrays> sub;
+    model.PulseSubrays(pulse.scan_index, pulse.beam, std::span(sub.data(), n));
+    const Eigen::Matrix3d rot = world_T_sensor.rotation.toRotationMatrix();
+    const auto tmax = static_cast<float>(model.TraceRangeM());
+    std::array<Ray, kMaxSubrays> rays;
+    for (std::size_t i = 0; i < n; ++i) {
+        rays[i].origin = (rot * sub[i].origin + world_T_sensor.translation).cast<float>();
+        rays[i].direction = (rot * sub[i].direction).cast<float>();
+        rays[i].tmax_m = tmax;
+    }
+    pulse.beam_direction_world = rot * sub[0].direction;
+    std::array<Hit, kMaxSubrays> hits;
+    if (n == 1) {
+        hits[0] = world.CastOne(rays[0]);
+    } else {
+        world.CastPacket(std::span<const Ray>(rays.data(), n), std::span<Hit>(hits.data(), n));
+    }
+    std::array<sensor_models::SubrayHit, kMaxSubrays> sub_hits;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Hit& h = hits[i];
+        sensor_models::SubrayHit& s = sub_hits[i];
+        if (!h.valid()) {
+            continue;  // default: a miss
+        }
+        s.distance_m = static_cast<double>(h.distance_m);
+        s.cos_incidence = std::abs(static_cast<double>(h.normal.dot(rays[i].direction)));
+        s.reflectivity = static_cast<double>(h.reflectivity);
+        s.surface_id = h.object_id;
+    }
+    return model.FormReturn(pulse, std::span<const sensor_models::SubrayHit>(sub_hits.data(), n));
+}
+
+ScanResult CastScan(const World& world,
+                    const Lms200Model& model,
+                    const core::Trajectory& world_T_sensor,
+                    double stamp_s,
+                    std::uint64_t scan_index) {
+    double last_offset = 0.0;
+    for (std::size_t i = 0; i < model.BeamCount(); ++i) {
+        last_offset = std::max(last_offset, model.BeamTimeOffsetS(i));
+    }
+    if (world_T_sensor.empty() || !(stamp_s >= world_T_sensor.StartTime()) ||
+        !(stamp_s + last_offset <= world_T_sensor.EndTime())) {
+        const std::string span = world_T_sensor.empty()
+                                     ? std::string("empty")
+                                     : Seconds(world_T_sensor.StartTime()) + ".." +
+                                           Seconds(world_T_sensor.EndTime()) + " s";
+        throw MakeInputError("trajectory", "scan " + std::to_string(scan_index) + " stamp_s",
+                             Seconds(stamp_s),
+                             "the scan's beams must lie within the trajectory (" + span + ")");
+    }
+    return CastScanImpl(world, model, stamp_s, scan_index,
+                        [&](std::size_t, double t) { return *world_T_sensor.PoseAt(t); });
+}
+
+ScanResult CastScanAt(const World& world,
+                      const Lms200Model& model,
+                      const core::Pose& world_T_sensor,
+                      double stamp_s,
+                      std::uint64_t scan_index) {
+    return CastScanImpl(world, model, stamp_s, scan_index,
+                        [&](std::size_t, double) { return world_T_sensor; });
+}
+
+std::vector<ScanResult> Simulate(const World& world,
+                                 const Lms200Model& model,
+                                 const core::Trajectory& world_T_sensor,
+                                 const SimulateOptions& options) {
+    const double period = options.period_s > 0.0 ? options.period_s : model.ScanPeriodS();
+    std::vector<ScanResult> scans(options.scan_count);
+    core::ParallelFor(options.scan_count, options.threads, [&](std::size_t k) {
+        scans[k] = CastScan(world, model, world_T_sensor,
+                            options.start_s + static_cast<double>(k) * period,
+                            options.first_scan_index + k);
+    });
+    return scans;
+}
+
+}  // namespace casmap::sim
