@@ -1,0 +1,234 @@
+#include "mapper/filter_params.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <functional>
+#include <map>
+
+#include "core/input_error.hpp"
+
+namespace casmap::mapper {
+namespace {
+
+const char* const kWhere = "--set";
+
+[[noreturn]] void Reject(std::string_view name, std::string_view value, const std::string& rule) {
+    throw MakeInputError(kWhere, std::string(name), std::string(value), rule);
+}
+
+double ParseNumber(std::string_view name, std::string_view value) {
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
+    if (ec != std::errc() || end != value.data() + value.size() || !std::isfinite(v)) {
+        Reject(name, value, "must be a finite number");
+    }
+    return v;
+}
+
+double ParseRange(
+    std::string_view name, std::string_view value, double lo, double hi, bool lo_open) {
+    const double v = ParseNumber(name, value);
+    if ((lo_open ? !(v > lo) : !(v >= lo)) || v > hi) {
+        std::string rule = "allowed: ";
+        rule += lo_open ? "> " : ">= ";
+        rule += std::to_string(lo);
+        if (std::isfinite(hi)) {
+            rule += " and <= " + std::to_string(hi);
+        }
+        Reject(name, value, rule);
+    }
+    return v;
+}
+
+int ParseInt(std::string_view name, std::string_view value, int lo, int hi) {
+    int v = 0;
+    const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
+    if (ec != std::errc() || end != value.data() + value.size() || v < lo || v > hi) {
+        Reject(name, value, "allowed: integer " + std::to_string(lo) + ".." + std::to_string(hi));
+    }
+    return v;
+}
+
+template <typename Enum>
+Enum ParseChoice(std::string_view name,
+                 std::string_view value,
+                 const std::vector<std::pair<std::string_view, Enum>>& choices) {
+    std::string allowed;
+    for (const auto& [text, e] : choices) {
+        if (value == text) {
+            return e;
+        }
+        allowed += allowed.empty() ? "" : "|";
+        allowed += text;
+    }
+    Reject(name, value, "allowed: " + allowed);
+}
+
+constexpr double kInf = HUGE_VAL;
+
+using Setter = std::function<void(FilterParams&, std::string_view, std::string_view)>;
+
+const std::map<std::string, Setter, std::less<>>& Setters() {
+    static const std::map<std::string, Setter, std::less<>> setters = {
+        {"k", [](FilterParams& p, auto n, auto v) { p.cas.k = ParseInt(n, v, 1, 7); }},
+        {"a", [](FilterParams& p, auto n, auto v) { p.cas.a = ParseInt(n, v, 1, 1000); }},
+        {"cell_m",
+         [](FilterParams& p, auto n, auto v) { p.cas.cell_m = ParseRange(n, v, 0, kInf, true); }},
+        {"speed_m_s", [](FilterParams& p, auto n,
+                         auto v) { p.cas.speed_m_s = ParseRange(n, v, 0, kInf, true); }},
+        {"scan_period_s", [](FilterParams& p, auto n,
+                             auto v) { p.cas.scan_period_s = ParseRange(n, v, 0, kInf, true); }},
+        {"A", [](FilterParams& p, auto n, auto v) { p.cas.A = ParseRange(n, v, 0, kInf, false); }},
+        {"G", [](FilterParams& p, auto n, auto v) { p.cas.G = ParseRange(n, v, 0, kInf, false); }},
+        {"gs_mode",
+         [](FilterParams& p, auto n, auto v) {
+             p.cas.gs_mode = ParseChoice<GsMode>(
+                 n, v, {{"sum", GsMode::kSum}, {"variance", GsMode::kVariance}});
+         }},
+        {"h_sum_min", [](FilterParams& p, auto n,
+                         auto v) { p.cas.h_sum_min = ParseRange(n, v, 0, kInf, false); }},
+        {"B", [](FilterParams& p, auto n, auto v) { p.cas.B = ParseRange(n, v, 0, kInf, false); }},
+        {"normalise",
+         [](FilterParams& p, auto n, auto v) {
+             p.cas.normalise = ParseChoice<Normalise>(
+                 n, v, {{"window", Normalise::kWindow}, {"global", Normalise::kGlobal}});
+         }},
+        {"e_term",
+         [](FilterParams& p, auto n, auto v) {
+             p.cas.e_term = ParseChoice<bool>(n, v, {{"off", false}, {"on", true}});
+         }},
+        {"E", [](FilterParams& p, auto n, auto v) { p.cas.E = ParseRange(n, v, 0, kInf, false); }},
+        {"wm_empty",
+         [](FilterParams& p, auto n, auto v) {
+             p.cas.wm_empty = ParseChoice<WmEmpty>(
+                 n, v, {{"include", WmEmpty::kInclude}, {"skip", WmEmpty::kSkip}});
+         }},
+        {"window",
+         [](FilterParams& p, auto n, auto v) {
+             const int w = ParseInt(n, v, 3, 15);
+             if (w % 2 == 0) {
+                 Reject(n, v, "allowed: odd integer 3..15");
+             }
+             p.baseline.window = w;
+         }},
+        {"noise", [](FilterParams& p, auto n,
+                     auto v) { p.baseline.noise = ParseRange(n, v, 0, kInf, false); }},
+        {"center_weight",
+         [](FilterParams& p, auto n, auto v) {
+             const int w = ParseInt(n, v, 1, 99);
+             if (w % 2 == 0) {
+                 Reject(n, v, "allowed: odd integer 1..99, so the sample count stays odd");
+             }
+             p.baseline.center_weight = w;
+         }},
+    };
+    return setters;
+}
+
+}  // namespace
+
+FilterMethod ParseFilterMethod(std::string_view name, const std::string& field) {
+    for (const FilterMethod m : AllFilterMethods()) {
+        if (name == ToString(m)) {
+            return m;
+        }
+    }
+    throw MakeInputError("", field, std::string(name), "allowed: cas|wiener|average|median|cwm");
+}
+
+std::string_view ToString(FilterMethod method) {
+    switch (method) {
+        case FilterMethod::kCas:
+            return "cas";
+        case FilterMethod::kWiener:
+            return "wiener";
+        case FilterMethod::kAverage:
+            return "average";
+        case FilterMethod::kMedian:
+            return "median";
+        case FilterMethod::kCwm:
+            return "cwm";
+    }
+    return "?";
+}
+
+const std::vector<FilterMethod>& AllFilterMethods() {
+    static const std::vector<FilterMethod> all = {FilterMethod::kCas, FilterMethod::kWiener,
+                                                  FilterMethod::kAverage, FilterMethod::kMedian,
+                                                  FilterMethod::kCwm};
+    return all;
+}
+
+double CasParams::EffectiveA() const {
+    if (A) {
+        return *A;
+    }
+    // Eq. 8; int() is "round to the nearest integer" in the paper's words.
+    return a * (std::round(cell_m / (speed_m_s * scan_period_s)) + 2.0);
+}
+
+double CasParams::EffectiveG() const { return G ? *G : 10.0 * EffectiveA(); }
+
+void FilterParams::Set(std::string_view name, std::string_view value) {
+    const auto& setters = Setters();
+    const auto it = setters.find(name);
+    if (it == setters.end()) {
+        std::string known;
+        for (const auto& [n, s] : setters) {
+            known += known.empty() ? "" : ", ";
+            known += n;
+        }
+        throw MakeInputError(kWhere, std::string(name), std::string(value),
+                             "unknown filter parameter; known: " + known);
+    }
+    it->second(*this, name, value);
+}
+
+void FilterParams::SetAssignment(std::string_view assignment) {
+    const std::size_t eq = assignment.find('=');
+    if (eq == std::string_view::npos || eq == 0) {
+        throw MakeInputError(kWhere, std::string(assignment), "", "expected NAME=VALUE");
+    }
+    Set(assignment.substr(0, eq), assignment.substr(eq + 1));
+}
+
+void FilterParams::Validate() const {
+    const auto check = [](bool ok, const std::string& name, double v, const std::string& rule) {
+        if (!ok) {
+            throw MakeInputError("filter parameters", name, std::to_string(v), rule);
+        }
+    };
+    check(cas.k >= 1 && cas.k <= 7, "k", cas.k, "allowed: integer 1..7");
+    check(cas.a >= 1, "a", cas.a, "allowed: integer >= 1");
+    check(cas.cell_m > 0 && std::isfinite(cas.cell_m), "cell_m", cas.cell_m, "allowed: > 0");
+    check(cas.speed_m_s > 0 && std::isfinite(cas.speed_m_s), "speed_m_s", cas.speed_m_s,
+          "allowed: > 0");
+    check(cas.scan_period_s > 0 && std::isfinite(cas.scan_period_s), "scan_period_s",
+          cas.scan_period_s, "allowed: > 0");
+    check(std::isfinite(cas.EffectiveA()) && cas.EffectiveA() >= 0, "A", cas.EffectiveA(),
+          "allowed: >= 0");
+    check(std::isfinite(cas.EffectiveG()) && cas.EffectiveG() >= 0, "G", cas.EffectiveG(),
+          "allowed: >= 0");
+    check(cas.h_sum_min >= 0, "h_sum_min", cas.h_sum_min, "allowed: >= 0");
+    check(cas.B >= 0, "B", cas.B, "allowed: >= 0");
+    check(cas.E >= 0, "E", cas.E, "allowed: >= 0");
+    check(baseline.window >= 3 && baseline.window <= 15 && baseline.window % 2 == 1, "window",
+          baseline.window, "allowed: odd integer 3..15");
+    check(!baseline.noise || (*baseline.noise >= 0 && std::isfinite(*baseline.noise)), "noise",
+          baseline.noise.value_or(0.0), "allowed: >= 0");
+    check(baseline.center_weight >= 1 && baseline.center_weight % 2 == 1, "center_weight",
+          baseline.center_weight, "allowed: odd integer >= 1");
+}
+
+const std::vector<std::string>& FilterParams::Names() {
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> out;
+        for (const auto& [n, s] : Setters()) {
+            out.push_back(n);
+        }
+        return out;
+    }();
+    return names;
+}
+
+}  // namespace casmap::mapper

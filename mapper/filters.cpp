@@ -1,0 +1,25 @@
+#include "mapper/filters.hpp"
+
+namespace casmap::mapper {
+
+FilterResult RunFilter(FilterMethod method,
+                       const core::MapF& elevation,
+                       const core::MapF& certainty,
+                       const FilterParams& params) {
+    params.Validate();
+    switch (method) {
+        case FilterMethod::kCas:
+            return CasFilter(elevation, certainty, params.cas);
+        case FilterMethod::kWiener:
+            return FilterResult{WienerFilter(elevation, params.baseline), {}};
+        case FilterMethod::kAverage:
+            return FilterResult{AverageFilter(elevation, params.baseline), {}};
+        case FilterMethod::kMedian:
+            return FilterResult{MedianFilter(elevation, params.baseline), {}};
+        case FilterMethod::kCwm:
+            return FilterResult{CwmFilter(elevation, params.baseline), {}};
+    }
+    return {};
+}
+
+}  // namespace casmap::mapper

@@ -1,0 +1,48 @@
+#pragma once
+
+#include <cstdint>
+
+#include "core/grid.hpp"
+#include "mapper/filter_params.hpp"
+
+namespace casmap::mapper {
+
+/// What the CAS filter did to one pixel (Eq. 7 branches; Table II classes).
+enum class PixelClass : std::uint8_t {
+    kUntouched = 0,  // output = input (third branch)
+    kRemoved = 1,    // set to 0: mixed pixel / artifact (first branch)
+    kFilled = 2,     // weighted median of the Fig. 5 skeleton: missing data (second branch)
+    kBorder = 3,     // within k cells of the edge: the window does not fit, left as it was
+};
+using ClassMap = core::Raster<std::uint8_t>;
+
+struct FilterResult {
+    core::MapF elevation;  // filtered H, metres
+    ClassMap classes;      // per-pixel PixelClass for CAS; empty (0 x 0) for the baselines
+};
+
+/// Runs one filter on the raw elevation map H (metres) and certainty map C (counts).
+/// The certainty map is needed by CAS only (it may be empty otherwise). Throws InputError if
+/// the parameters are invalid or H and C differ in size. Never filters in place: every output
+/// pixel is computed from the unfiltered input.
+[[nodiscard]] FilterResult RunFilter(FilterMethod method,
+                                     const core::MapF& elevation,
+                                     const core::MapF& certainty,
+                                     const FilterParams& params);
+
+/// CAS filter, Eq. 7-10 (mapper/cas_filter.cpp). Pixels within k of the border are kBorder.
+[[nodiscard]] FilterResult CasFilter(const core::MapF& elevation,
+                                     const core::MapF& certainty,
+                                     const CasParams& params);
+
+/// Baselines (mapper/baseline_filters.cpp). Every one replicates the edge pixels beyond the
+/// border (OpenCV BORDER_REPLICATE, the mode cv::medianBlur uses internally).
+[[nodiscard]] core::MapF WienerFilter(const core::MapF& elevation, const BaselineParams& params);
+[[nodiscard]] core::MapF AverageFilter(const core::MapF& elevation, const BaselineParams& params);
+[[nodiscard]] core::MapF MedianFilter(const core::MapF& elevation, const BaselineParams& params);
+[[nodiscard]] core::MapF CwmFilter(const core::MapF& elevation, const BaselineParams& params);
+
+/// The Wiener noise power actually used: params.noise or the mean local variance (m^2).
+[[nodiscard]] double WienerNoise(const core::MapF& elevation, const BaselineParams& params);
+
+}  // namespace casmap::mapper
