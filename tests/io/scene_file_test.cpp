@@ -4,10 +4,13 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "core/input_error.hpp"
 #include "io/mesh_import.hpp"
@@ -212,6 +215,105 @@ TEST_F(SceneFileTest, RejectsStructuralMistakes) {
 
 TEST(SceneFile, MissingFileIsAnInputError) {
     EXPECT_THROW((void)LoadScene("/nonexistent/scene.yaml"), InputError);
+}
+
+}  // namespace
+}  // namespace casmap::io
+
+namespace casmap::io {
+namespace {
+
+// Table I of Ye & Borenstein, independent of scripts/make_scenes.py: object names per course.
+TEST(CommittedScenes, CoursesHoldTableIObjectsWithPrintedDimensions) {
+    const std::map<int, std::vector<std::string>> table = {
+        {1,
+         {"parallelepiped2", "parallelepiped3", "pole1", "pole2", "pole3", "pole4", "pole5",
+          "pole7", "pole9"}},
+        {2,
+         {"parallelepiped3", "pole1", "pole2", "pole3", "pole4", "pole5", "pole6", "pole7",
+          "pole9"}},
+        {3, {"pole1", "pole2", "pole3", "pole4", "pole5", "pole6", "pole7", "pole9"}},
+        {4, {"parallelepiped2", "parallelepiped4", "cylinder", "pole1", "pole2", "pole4", "pole6"}},
+        {5, {"parallelepiped1", "parallelepiped2", "pole1", "pole2", "pole3", "pole4", "pole6"}},
+        {6,
+         {"parallelepiped1", "parallelepiped2", "cylinder", "pole1", "pole2", "pole3", "pole4",
+          "pole6"}},
+        {7,
+         {"parallelepiped1", "parallelepiped2", "cylinder", "pole1", "pole2", "pole3", "pole4",
+          "pole5", "pole6", "pole7"}},
+        {8,
+         {"parallelepiped2", "parallelepiped4", "cylinder", "pole1", "pole2", "pole3", "pole4",
+          "pole5", "pole6", "pole7", "pole8", "pole9"}},
+        {9,
+         {"parallelepiped2", "parallelepiped4", "pole1", "pole2", "pole3", "pole4", "pole5",
+          "pole6", "pole7", "pole8", "pole9"}},
+        {10,
+         {"parallelepiped2", "parallelepiped3", "parallelepiped4", "pole1", "pole2", "pole3",
+          "pole4", "pole5", "pole7", "pole9"}},
+        {11,
+         {"parallelepiped1", "parallelepiped2", "parallelepiped3", "pole1", "pole2", "pole3",
+          "pole4", "pole5", "pole7", "pole9"}},
+        {12,
+         {"parallelepiped2", "parallelepiped4", "pole1", "pole2", "pole3", "pole4", "pole5",
+          "pole7", "pole9"}},
+        {13,
+         {"parallelepiped2", "parallelepiped3", "pole1", "pole2", "pole3", "pole4", "pole5",
+          "pole6", "pole7", "pole9"}},
+        {14, {"parallelepiped1", "parallelepiped2", "parallelepiped3"}},
+        {15, {"parallelepiped2", "parallelepiped3", "parallelepiped4"}},
+        {16, {"parallelepiped2", "parallelepiped3"}},
+    };
+    const std::map<std::string, Eigen::Vector3d> boxes = {
+        {"parallelepiped1", {0.530, 0.559, 0.462}},
+        {"parallelepiped2", {0.413, 0.456, 0.414}},
+        {"parallelepiped3", {0.400, 0.343, 0.213}},
+        {"parallelepiped4", {0.514, 0.540, 0.327}}};
+    const double pole_diameter_mm[] = {24, 21, 19, 15, 11, 9, 6, 4.5, 2.5};
+    for (const auto& [course, names] : table) {
+        char file[64];
+        std::snprintf(file, sizeof(file), "/scenes/courses/course%02d.yaml", course);
+        const core::Scene scene = LoadScene(std::string(CASMAP_SOURCE_DIR) + file);
+        ASSERT_EQ(scene.objects.size(), names.size() + 1) << file;
+        EXPECT_EQ(scene.objects[0].name, "floor");
+        const auto& floor = std::get<core::BoxShape>(scene.objects[0].shape);
+        EXPECT_NEAR(scene.objects[0].world_T_object.translation.z() + floor.size_m.z() / 2, 0.0,
+                    1e-12);
+        for (std::size_t i = 0; i < names.size(); ++i) {
+            const core::SceneObject& o = scene.objects[i + 1];
+            ASSERT_EQ(o.name, names[i]) << file;
+            const Eigen::Vector3d& p = o.world_T_object.translation;
+            if (boxes.count(o.name) != 0) {
+                const auto& b = std::get<core::BoxShape>(o.shape);
+                EXPECT_TRUE(b.size_m.isApprox(boxes.at(o.name), 1e-12)) << file << " " << o.name;
+                EXPECT_NEAR(p.z(), b.size_m.z() / 2, 1e-12);  // resting on the floor
+            } else {
+                const auto& c = std::get<core::CylinderShape>(o.shape);
+                const bool pole = o.name != "cylinder";
+                const double diameter =
+                    pole ? pole_diameter_mm[o.name.back() - '1'] / 1000.0 : 0.411;
+                EXPECT_NEAR(2 * c.radius_m, diameter, 1e-12) << file << " " << o.name;
+                EXPECT_NEAR(c.height_m, pole ? 0.914 : 0.459, 1e-12);
+                EXPECT_NEAR(p.z(), c.height_m / 2, 1e-12);
+            }
+            // Inside the map region x in [1, 6), y in [-1, 1).
+            EXPECT_TRUE(p.x() > 1.0 && p.x() < 6.0 && p.y() > -1.0 && p.y() < 1.0) << o.name;
+        }
+    }
+}
+
+TEST(CommittedScenes, IndoorAndOutdoorLoad) {
+    const core::Scene indoor = LoadScene(std::string(CASMAP_SOURCE_DIR) + "/scenes/indoor.yaml");
+    EXPECT_GT(indoor.objects.size(), 8U);
+    const core::Scene outdoor = LoadScene(std::string(CASMAP_SOURCE_DIR) + "/scenes/outdoor.yaml");
+    int terrain = 0;
+    for (const core::SceneObject& o : outdoor.objects) {
+        if (o.terrain) {
+            ++terrain;
+            EXPECT_EQ(o.name, "ground");
+            EXPECT_GT(std::get<core::MeshShape>(o.shape).triangles.size(), 1000U);
+        }
+    }
+    EXPECT_EQ(terrain, 1);
 }
 
 }  // namespace
