@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "sensor_models/scratch_array.hpp"
+
 namespace casmap::sensor_models {
 namespace {
 
@@ -18,6 +20,8 @@ constexpr double kSegmentGapSigmas = 12.0;
 // Random streams of one pulse.
 constexpr std::uint32_t kStreamPattern = 1;
 constexpr std::uint32_t kStreamReturn = 2;
+// Detection probability above which the logistic need not be evaluated (an exact shortcut).
+constexpr double kSureProbability = 0.999;
 constexpr std::uint64_t kBiasTag = 0x6d6174657269616cULL;  // "material"
 
 double DegToRad(double deg) { return deg * std::numbers::pi / 180.0; }
@@ -318,12 +322,29 @@ Lms200Model::Lms200Model(const Lms200Config& config, std::uint64_t seed)
     // Ring pattern: ring k at rho = 0, 0.4, 0.8, 1.0 with 1, 6, 12, 18 rays evenly spaced.
     static constexpr std::array<double, 4> kRho = {0.0, 0.4, 0.8, 1.0};
     static constexpr std::array<int, 4> kCounts = {1, 6, 12, 18};
+    // A cone from the exit aperture: at range r the ray at normalised radius rho sits at
+    // rho * (D0 + theta r) / 2 from the axis (sensor_model.md 4.1).
+    const double a0 = 0.5 * config_.spot_diameter_at_exit_m;
+    const double half_div = 0.5 * config_.divergence_rad;
     std::size_t i = 0;
     for (std::size_t ring = 0; ring < kRho.size() && i < subray_count_; ++ring) {
         for (int k = 0; k < kCounts[ring] && i < subray_count_; ++k, ++i) {
-            ring_rho_[i] = kRho[ring];
-            ring_phase_[i] = kTwoPi * static_cast<double>(k) / static_cast<double>(kCounts[ring]);
+            const double psi = kTwoPi * static_cast<double>(k) / static_cast<double>(kCounts[ring]);
+            ring_cos_[i] = std::cos(psi);
+            ring_sin_[i] = std::sin(psi);
+            origin_offset_[i] = kRho[ring] * a0;
+            dir_slope_[i] = kRho[ring] * half_div;
+            dir_scale_[i] = 1.0 / std::sqrt(1.0 + dir_slope_[i] * dir_slope_[i]);
         }
+    }
+    // Peak whose detection probability is kSureProbability: logit(q) = db / soft_edge_db.
+    sure_peak_ = std::pow(
+        10.0, config_.soft_edge_db * std::log(kSureProbability / (1.0 - kSureProbability)) / 10.0);
+    beam_cos_.resize(beam_count_);
+    beam_sin_.resize(beam_count_);
+    for (std::size_t b = 0; b < beam_count_; ++b) {
+        beam_cos_[b] = std::cos(BeamAngleRad(b));
+        beam_sin_[b] = std::sin(BeamAngleRad(b));
     }
 }
 
@@ -366,30 +387,34 @@ core::Scan Lms200Model::MakeScan(double stamp_s) const {
 void Lms200Model::PulseSubrays(std::uint64_t scan_index,
                                std::size_t beam,
                                std::span<Subray> out) const {
-    const double phi = BeamAngleRad(beam);
-    const Eigen::Vector3d axis(std::cos(phi), std::sin(phi), 0.0);
-    const Eigen::Vector3d u1(-std::sin(phi), std::cos(phi), 0.0);  // in the scan plane
-    const Eigen::Vector3d u2 = Eigen::Vector3d::UnitZ();           // across it
-    double rotation = 0.0;
+    PulseSubrays(scan_index, beam, core::Pose{}, out);
+}
+
+void Lms200Model::PulseSubrays(std::uint64_t scan_index,
+                               std::size_t beam,
+                               const core::Pose& frame_T_sensor,
+                               std::span<Subray> out) const {
+    const Eigen::Matrix3d rot = frame_T_sensor.rotation.toRotationMatrix();
+    const double cb = beam_cos_[beam];
+    const double sb = beam_sin_[beam];
+    const Eigen::Vector3d axis = rot * Eigen::Vector3d(cb, sb, 0.0);
+    Eigen::Vector3d u1 = rot * Eigen::Vector3d(-sb, cb, 0.0);  // in the scan plane
+    Eigen::Vector3d u2 = rot.col(2);                           // across it
     if (config_.rotate_pattern_per_pulse && subray_count_ > 1) {
+        // One rotation of the whole pattern per pulse: rotate the transverse basis instead.
         PulseRng rng(seed_, scan_index, static_cast<std::uint32_t>(beam), kStreamPattern);
-        rotation = kTwoPi * rng.Uniform();
+        const double angle = kTwoPi * rng.Uniform();
+        const double c = std::cos(angle);
+        const double s = std::sin(angle);
+        const Eigen::Vector3d v1 = c * u1 + s * u2;
+        u2 = c * u2 - s * u1;
+        u1 = v1;
     }
-    // A cone from the exit aperture: at range r the ray at normalised radius rho sits at
-    // rho * (D0 + theta r) / 2 from the axis (sensor_model.md 4.1).
-    const double a0 = 0.5 * config_.spot_diameter_at_exit_m;
-    const double half_div = 0.5 * config_.divergence_rad;
+    const Eigen::Vector3d& origin = frame_T_sensor.translation;
     for (std::size_t i = 0; i < out.size() && i < subray_count_; ++i) {
-        const double rho = ring_rho_[i];
-        if (rho == 0.0) {
-            out[i].origin.setZero();
-            out[i].direction = axis;
-            continue;
-        }
-        const double psi = ring_phase_[i] + rotation;
-        const Eigen::Vector3d t = std::cos(psi) * u1 + std::sin(psi) * u2;
-        out[i].origin = rho * a0 * t;
-        out[i].direction = (axis + rho * half_div * t).normalized();
+        const Eigen::Vector3d t = ring_cos_[i] * u1 + ring_sin_[i] * u2;
+        out[i].origin = origin + origin_offset_[i] * t;
+        out[i].direction = dir_scale_[i] * (axis + dir_slope_[i] * t);
     }
 }
 
@@ -474,12 +499,14 @@ PulseResult Lms200Model::FormReturn(const PulseContext& pulse,
     // Echo energies, Lambertian lidar equation E = w rho cos(theta) / r^2, scaled so that a
     // full-footprint 10 % target at R10 gives exactly the threshold 1 (sensor_model.md 4.2).
     // Sorted by range (insertion sort; at most 37 entries).
-    std::array<EchoSample, kMaxSubrays> samples{};
-    std::array<std::size_t, kMaxSubrays> source{};
+    ScratchArray<EchoSample, kMaxSubrays> samples;
+    ScratchArray<std::size_t, kMaxSubrays> source;
     std::size_t n = 0;
     double in_range_weight = 0.0;
     const double scale = config_.r10_m * config_.r10_m / config_.r10_reflectivity;
     const std::size_t count = std::min(hits.size(), subray_count_);
+    samples.Construct(count);
+    source.Construct(count);
     for (std::size_t i = 0; i < count; ++i) {
         const SubrayHit& h = hits[i];
         if (!h.valid() || h.distance_m > config_.max_trace_range_m) {
@@ -543,14 +570,17 @@ PulseResult Lms200Model::FormReturn(const PulseContext& pulse,
 
     // Return formation: the first lobe that passes the detection threshold.
     const std::span<const EchoSample> sorted(samples.data(), n);
-    std::array<Lobe, kMaxSubrays> lobes{};
+    ScratchArray<Lobe, kMaxSubrays> lobes;
     std::size_t n_lobes = 0;
     if (config_.return_algorithm == ReturnAlgorithm::kAuto &&
         samples[n - 1].range_m - samples[0].range_m <= config_.compact_spread_m) {
+        lobes.Construct(1);
         lobes[0] = CompactLobe(sorted, config_.echo_width_m);
         n_lobes = 1;
     } else {
-        n_lobes = WaveformLobes(sorted, config_.echo_width_m, config_.lobe_bound_fraction, lobes);
+        lobes.Construct(kMaxSubrays);
+        n_lobes =
+            WaveformLobes(sorted, config_.echo_width_m, config_.lobe_bound_fraction, lobes.span());
     }
     const Lobe* echo = nullptr;
     double strongest = 0.0;
@@ -560,8 +590,14 @@ PulseResult Lms200Model::FormReturn(const PulseContext& pulse,
         bool detected = peak >= 1.0;
         if (config_.soft_threshold) {
             // Logistic in 10 log10(E / T) with a soft_edge_db scale ([A], sensor_model.md 4.4).
-            const double db = peak > 0.0 ? 10.0 * std::log10(peak) : -300.0;
-            detected = rng.Uniform() < 1.0 / (1.0 + std::exp(-db / config_.soft_edge_db));
+            // Exact shortcut: P(peak) >= 0.999 above sure_peak_, so any u < 0.999 detects.
+            const double u = rng.Uniform();
+            if (u < kSureProbability && peak >= sure_peak_) {
+                detected = true;
+            } else {
+                const double db = peak > 0.0 ? 10.0 * std::log10(peak) : -300.0;
+                detected = u < 1.0 / (1.0 + std::exp(-db / config_.soft_edge_db));
+            }
         }
         if (detected) {
             echo = &lobes[j];

@@ -5,7 +5,9 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <vector>
 
+#include "core/pose.hpp"
 #include "core/scan.hpp"
 #include "sensor_models/lms200_config.hpp"
 
@@ -141,6 +143,11 @@ public:
     /// aperture (diameter D0) with the divergence of the beam, the ring pattern rotated by a
     /// per-pulse random angle. out.size() must be SubrayCount().
     void PulseSubrays(std::uint64_t scan_index, std::size_t beam, std::span<Subray> out) const;
+    /// The same sub-rays expressed in the frame of `frame_T_sensor` (e.g. world_T_sensor).
+    void PulseSubrays(std::uint64_t scan_index,
+                      std::size_t beam,
+                      const core::Pose& frame_T_sensor,
+                      std::span<Subray> out) const;
     /// The return of one pulse from its sub-ray hits (hits[i] belongs to PulseSubrays' ray i).
     [[nodiscard]] PulseResult FormReturn(const PulseContext& pulse,
                                          std::span<const SubrayHit> hits) const;
@@ -159,8 +166,16 @@ private:
     std::size_t subray_count_ = 0;
     int turns_ = 1;
     double weights_[kMaxSubrays] = {};
-    double ring_rho_[kMaxSubrays] = {};
-    double ring_phase_[kMaxSubrays] = {};
+    // Sub-ray i of the unrotated pattern: transverse unit vector (cos, sin) of its azimuth,
+    // origin offset rho a0 and direction slope rho theta / 2 (normalised by dir_scale_).
+    double ring_cos_[kMaxSubrays] = {};
+    double ring_sin_[kMaxSubrays] = {};
+    double origin_offset_[kMaxSubrays] = {};
+    double dir_slope_[kMaxSubrays] = {};
+    double dir_scale_[kMaxSubrays] = {};
+    double sure_peak_ = 1.0;  // peak with detection probability kSureProbability
+    std::vector<double> beam_cos_;
+    std::vector<double> beam_sin_;
 };
 
 }  // namespace casmap::sensor_models

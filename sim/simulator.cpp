@@ -5,9 +5,11 @@
 #include <span>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "core/input_error.hpp"
 #include "core/parallel.hpp"
+#include "sensor_models/scratch_array.hpp"
 
 namespace casmap::sim {
 namespace {
@@ -16,6 +18,7 @@ using sensor_models::kMaxSubrays;
 using sensor_models::Lms200Model;
 using sensor_models::PulseContext;
 using sensor_models::PulseResult;
+using sensor_models::ScratchArray;
 
 // Fills beam i of `out` from a pose per beam time.
 template <class PoseAtBeam>
@@ -56,24 +59,27 @@ PulseResult CastPulse(const World& world,
                       const core::Pose& world_T_sensor,
                       PulseContext pulse) {
     const std::size_t n = model.SubrayCount();
-    std::array<sensor_models::Subray, kMaxSubrays> sub;
-    model.PulseSubrays(pulse.scan_index, pulse.beam, std::span(sub.data(), n));
-    const Eigen::Matrix3d rot = world_T_sensor.rotation.toRotationMatrix();
+    ScratchArray<sensor_models::Subray, kMaxSubrays> sub;
+    sub.Construct(n);
+    model.PulseSubrays(pulse.scan_index, pulse.beam, world_T_sensor, sub.span());
     const auto tmax = static_cast<float>(model.TraceRangeM());
-    std::array<Ray, kMaxSubrays> rays;
+    ScratchArray<Ray, kMaxSubrays> rays;
+    rays.Construct(n);
     for (std::size_t i = 0; i < n; ++i) {
-        rays[i].origin = (rot * sub[i].origin + world_T_sensor.translation).cast<float>();
-        rays[i].direction = (rot * sub[i].direction).cast<float>();
+        rays[i].origin = sub[i].origin.cast<float>();
+        rays[i].direction = sub[i].direction.cast<float>();
         rays[i].tmax_m = tmax;
     }
-    pulse.beam_direction_world = rot * sub[0].direction;
-    std::array<Hit, kMaxSubrays> hits;
+    pulse.beam_direction_world = sub[0].direction;
+    ScratchArray<Hit, kMaxSubrays> hits;
+    hits.Construct(n);
     if (n == 1) {
         hits[0] = world.CastOne(rays[0]);
     } else {
-        world.CastPacket(std::span<const Ray>(rays.data(), n), std::span<Hit>(hits.data(), n));
+        world.CastPacket(std::as_const(rays).span(), hits.span());
     }
-    std::array<sensor_models::SubrayHit, kMaxSubrays> sub_hits;
+    ScratchArray<sensor_models::SubrayHit, kMaxSubrays> sub_hits;
+    sub_hits.Construct(n);
     for (std::size_t i = 0; i < n; ++i) {
         const Hit& h = hits[i];
         sensor_models::SubrayHit& s = sub_hits[i];
@@ -85,7 +91,7 @@ PulseResult CastPulse(const World& world,
         s.reflectivity = static_cast<double>(h.reflectivity);
         s.surface_id = h.object_id;
     }
-    return model.FormReturn(pulse, std::span<const sensor_models::SubrayHit>(sub_hits.data(), n));
+    return model.FormReturn(pulse, std::as_const(sub_hits).span());
 }
 
 ScanResult CastScan(const World& world,
