@@ -30,6 +30,7 @@ void TelegramParser::Reset() {
     replay_.clear();
     replay_pos_ = 0;
     expected_size_ = 0;
+    out_of_sync_ = false;
 }
 
 void TelegramParser::Drain(const Callback& callback) {

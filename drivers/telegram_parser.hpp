@@ -58,7 +58,9 @@ public:
     void Timeout(const Callback& callback);
     /// True while a candidate frame is being collected.
     [[nodiscard]] bool InFrame() const { return !frame_.empty(); }
-    /// Drops any partial frame without counting (after a port flush or reconnect).
+    /// False from a stray byte or abandoned candidate until the next good telegram (or Reset).
+    [[nodiscard]] bool InSync() const { return !out_of_sync_; }
+    /// Drops any partial frame without counting and starts in sync (after a port flush).
     void Reset();
     [[nodiscard]] const ParserCounters& counters() const { return counters_; }
 

@@ -1,0 +1,112 @@
+#pragma once
+
+// LMS 200 serial driver: power-on at 9600 baud, switch to the requested rate, read type, status
+// and configuration, set the variant, start continuous 0x24 output, deliver core::Scans, and
+// reconnect by itself when the line goes quiet or the device disappears.
+
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/lms200.hpp"
+#include "core/scan.hpp"
+#include "drivers/serial_port.hpp"
+#include "drivers/telegram.hpp"
+#include "drivers/telegram_parser.hpp"
+
+namespace casmap::drivers {
+
+struct DriverConfig {
+    std::string device;                  // e.g. /dev/ttyUSB0 or the virtual scanner's link
+    int baud = 38400;                    // rate the driver switches to (9600/19200/38400/500000)
+    std::optional<Variant> variant;      // set with 0x3B when given; else the device's current
+    int tries = 3;                       // per request (sicktoolbox: 3)
+    double reply_timeout_s = 1.0;        // after the ACK, per try (sicktoolbox: 1 s)
+    double mode_timeout_s = 3.0;         // after the ACK for 0x20, per try (TL: up to 3 s)
+    double baud_settle_s = 0.05;         // pause after changing the host rate
+    double quiet_timeout_s = 1.0;        // no scan for this long while streaming -> reconnect
+    double inter_byte_timeout_s = 0.05;  // partial telegram dropped after this gap (LMS: 14 ms)
+    double request_byte_gap_s = 0.0;     // gap between request bytes (sicktoolbox: 55 us)
+    bool autodetect = true;              // probe 19200/38400/500000 with 0x32 if 9600 is silent
+    /// Throws InputError naming the field (bad baud, empty device, non-positive timeouts).
+    void Validate() const;
+};
+
+struct DriverCounters {
+    std::uint64_t bytes = 0;          // bytes read from the line
+    std::uint64_t telegrams = 0;      // good telegrams
+    std::uint64_t scans = 0;          // scans delivered
+    std::uint64_t crc_errors = 0;     // candidates rejected for their CRC
+    std::uint64_t bad_headers = 0;    // candidates rejected for address or LEN
+    std::uint64_t dropped_bytes = 0;  // bytes in no good telegram (garbage, damaged frames)
+    std::uint64_t resyncs = 0;        // episodes of lost synchronisation
+    std::uint64_t malformed = 0;      // good CRC but contents against the protocol (logged)
+    std::uint64_t naks = 0;           // 0x15 received
+    std::uint64_t retries = 0;        // requests sent again
+    std::uint64_t reconnects = 0;
+};
+
+/// What the scanner reported during initialisation.
+struct DeviceInfo {
+    std::string type;
+    DeviceStatus status;
+    ConfigBlock config;
+    Variant variant;
+    core::Lms200Format format;
+    int baud = 0;
+};
+
+class Lms200Driver {
+public:
+    /// Validates the config (InputError); does not touch the device.
+    explicit Lms200Driver(DriverConfig config);
+    ~Lms200Driver();
+    Lms200Driver(const Lms200Driver&) = delete;
+    Lms200Driver& operator=(const Lms200Driver&) = delete;
+
+    /// Opens the device and initialises the scanner up to continuous output. Throws InputError
+    /// for a missing device, a non-terminal or an unsupported configuration, SerialError if no
+    /// LMS 200 answers.
+    void Connect();
+    /// The next scan, or nullopt if none arrived within `timeout_s`. Beam 0 is stamped
+    /// (system clock, s since the epoch) at the telegram's arrival minus its transmission time
+    /// at the line rate minus the sweep duration (scan_codec.hpp). Reconnects by itself.
+    [[nodiscard]] std::optional<core::Scan> NextScan(double timeout_s);
+    /// Stops the output and returns the scanner to 9600 baud (best effort), closes the port.
+    void Close();
+
+    [[nodiscard]] DriverCounters counters() const;
+    [[nodiscard]] const DeviceInfo& info() const { return info_; }
+    [[nodiscard]] bool connected() const { return port_ != nullptr; }
+
+private:
+    using Clock = std::chrono::steady_clock;
+    void Initialise();
+    bool FindScanner();
+    /// Sends `request` and waits for the reply with command `reply_cmd`. nullopt after all tries.
+    std::optional<Telegram> Transact(const Telegram& request, double timeout_s, int tries);
+    Telegram Require(const Telegram& request, double timeout_s, const char* what);
+    void ReadSome(double timeout_s);
+    void OnTelegram(const Telegram& t, double arrival_s);
+    bool TryReconnect(Clock::time_point deadline);
+
+    DriverConfig config_;
+    std::unique_ptr<SerialPort> port_;
+    TelegramParser parser_{Sender::kScanner};
+    DeviceInfo info_;
+    DriverCounters own_;
+    bool streaming_ = false;
+    std::deque<core::Scan> ready_;
+    std::optional<Telegram> awaited_;  // reply captured during Transact
+    std::uint8_t awaited_cmd_ = 0;
+    bool saw_ack_ = false;
+    bool saw_nak_ = false;
+    bool saw_bad_crc_ = false;
+    Clock::time_point last_scan_;
+    std::vector<std::uint8_t> buffer_;
+};
+
+}  // namespace casmap::drivers

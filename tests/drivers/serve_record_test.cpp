@@ -1,0 +1,187 @@
+// The driver talking to the virtual LMS 200 through a real pseudo-terminal.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include "drivers/lms200_driver.hpp"
+#include "drivers/virtual_lms200.hpp"
+#include "test_source.hpp"
+
+namespace casmap::drivers {
+namespace {
+
+using testing::NumberedSource;
+using testing::SentLog;
+using Clock = std::chrono::steady_clock;
+
+std::string LinkPath(const std::string& name) {
+    return "/tmp/casmap_drivers_test_" + std::to_string(getpid()) + "_" + name;
+}
+
+/// The scanner's scan as the driver must deliver it: same status, range and raw value.
+void ExpectSameBeams(const core::Scan& got, const core::Scan& sent) {
+    ASSERT_EQ(got.beams.size(), sent.beams.size());
+    for (std::size_t i = 0; i < got.beams.size(); ++i) {
+        EXPECT_EQ(got.beams[i].status, sent.beams[i].status) << "beam " << i;
+        EXPECT_EQ(got.beams[i].raw, sent.beams[i].raw) << "beam " << i;
+        if (sent.beams[i].status == core::BeamStatus::kOk) {
+            EXPECT_EQ(got.beams[i].range_m, sent.beams[i].range_m) << "beam " << i;
+        }
+    }
+}
+
+struct Recorded {
+    std::vector<core::Scan> scans;
+    std::vector<double> arrival_s;  // steady clock, for the rate
+};
+
+Recorded Record(Lms200Driver& driver, int count, double timeout_s) {
+    Recorded r;
+    const Clock::time_point start = Clock::now();
+    while (static_cast<int>(r.scans.size()) < count) {
+        std::optional<core::Scan> s = driver.NextScan(timeout_s);
+        if (!s) {
+            break;
+        }
+        r.scans.push_back(std::move(*s));
+        r.arrival_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+    }
+    return r;
+}
+
+TEST(ServeRecord, At38400EveryScanArrivesIntactAtTheLineRate) {
+    NumberedSource source;
+    VirtualLms200Config vc;
+    vc.link_path = LinkPath("38400");
+    VirtualLms200 scanner(vc, source);
+    SentLog log;
+    scanner.SetScanObserver([&log](const SentScan& s) { log.Record(s); });
+    scanner.Start();
+
+    DriverConfig dc;
+    dc.device = vc.link_path;
+    dc.baud = 38400;
+    Lms200Driver driver(dc);
+    driver.Connect();
+    EXPECT_EQ(driver.info().baud, 38400);
+    EXPECT_NE(driver.info().type.find("LMS200;30106"), std::string::npos);
+    const Recorded r = Record(driver, 6, 2.0);
+    ASSERT_EQ(r.scans.size(), 6U);
+    for (const core::Scan& s : r.scans) {
+        const std::uint64_t index = s.beams[0].raw;
+        ExpectSameBeams(s, NumberedSource::Make(index, Variant{}));
+    }
+    // 372-byte telegrams at 38400 baud: 96.9 ms each, so about 10.3 scans/s (not 75).
+    const double rate = 5.0 / (r.arrival_s[5] - r.arrival_s[0]);
+    std::printf("38400 baud: %.2f scans/s\n", rate);
+    EXPECT_GT(rate, 8.5);
+    EXPECT_LT(rate, 10.8);
+    EXPECT_GT(r.scans[5].beams[0].raw - r.scans[0].beams[0].raw, 25);  // sweeps were skipped
+    EXPECT_GT(scanner.stats().scans_skipped, 0U);
+    const DriverCounters c = driver.counters();
+    EXPECT_EQ(c.crc_errors, 0U);
+    EXPECT_EQ(c.reconnects, 0U);
+    driver.Close();
+    EXPECT_EQ(scanner.stats().baud, 9600);  // Close() returned the scanner to 9600
+}
+
+TEST(ServeRecord, At500000EverySweepArrivesIntact) {
+    NumberedSource source;
+    VirtualLms200Config vc;
+    vc.link_path = LinkPath("500k");
+    VirtualLms200 scanner(vc, source);
+    SentLog log;
+    scanner.SetScanObserver([&log](const SentScan& s) { log.Record(s); });
+    scanner.Start();
+
+    DriverConfig dc;
+    dc.device = vc.link_path;
+    dc.baud = 500000;
+    dc.variant = Variant{180, 50};
+    Lms200Driver driver(dc);
+    driver.Connect();
+    EXPECT_EQ(driver.info().variant, (Variant{180, 50}));
+    const Recorded r = Record(driver, 20, 1.0);
+    ASSERT_EQ(r.scans.size(), 20U);
+    int consecutive = 0;
+    for (std::size_t i = 0; i < r.scans.size(); ++i) {
+        const std::uint64_t index = r.scans[i].beams[0].raw;
+        ExpectSameBeams(r.scans[i], NumberedSource::Make(index, Variant{180, 50}));
+        if (i > 0 && index == r.scans[i - 1].beams[0].raw + 1U) {
+            ++consecutive;
+        }
+    }
+    // 732 bytes take 14.6 ms < 26.7 ms per 0.5-degree scan: the line carries every sweep.
+    const double rate = 19.0 / (r.arrival_s[19] - r.arrival_s[0]);
+    std::printf("500000 baud, 0.5 deg: %.2f scans/s, %d of 19 consecutive\n", rate, consecutive);
+    EXPECT_GT(rate, 30.0);
+    EXPECT_GE(consecutive, 16);
+    EXPECT_EQ(driver.counters().crc_errors, 0U);
+}
+
+TEST(ServeRecord, FaultsAreRejectedAndCountedAndTheDriverRecovers) {
+    NumberedSource source;
+    VirtualLms200Config vc;
+    vc.link_path = LinkPath("faults");
+    vc.faults = ParseFaults("crc=0.04,garbage=0.04,drop=0.04,disconnect=0.7");
+    vc.faults.offline_s = 0.2;
+    vc.faults.seed = 4242;
+    std::printf("fault seed %llu\n", static_cast<unsigned long long>(vc.faults.seed));
+    VirtualLms200 scanner(vc, source);
+    SentLog log;
+    scanner.SetScanObserver([&log](const SentScan& s) { log.Record(s); });
+    scanner.Start();
+
+    DriverConfig dc;
+    dc.device = vc.link_path;
+    dc.baud = 500000;
+    Lms200Driver driver(dc);
+    driver.Connect();
+    std::set<std::uint64_t> received;
+    const Clock::time_point end = Clock::now() + std::chrono::milliseconds(1600);
+    while (Clock::now() < end) {
+        std::optional<core::Scan> s = driver.NextScan(1.0);
+        if (!s) {
+            continue;
+        }
+        const std::uint64_t index = s->beams[0].raw;
+        ExpectSameBeams(*s, NumberedSource::Make(index, Variant{}));
+        EXPECT_TRUE(received.insert(index).second) << "scan " << index << " twice";
+    }
+    driver.Close();
+    scanner.Stop();
+    const VirtualLms200Stats st = scanner.stats();
+    const DriverCounters c = driver.counters();
+    std::printf(
+        "sent intact %zu damaged %zu received %zu | faults crc %llu drop %llu garbage %llu "
+        "disconnects %llu | driver crc %llu bad_headers %llu dropped %llu resyncs %llu "
+        "reconnects %llu\n",
+        log.intact.size(), log.damaged.size(), received.size(),
+        static_cast<unsigned long long>(st.crc_faults),
+        static_cast<unsigned long long>(st.drop_faults),
+        static_cast<unsigned long long>(st.garbage_faults),
+        static_cast<unsigned long long>(st.disconnects),
+        static_cast<unsigned long long>(c.crc_errors),
+        static_cast<unsigned long long>(c.bad_headers),
+        static_cast<unsigned long long>(c.dropped_bytes),
+        static_cast<unsigned long long>(c.resyncs), static_cast<unsigned long long>(c.reconnects));
+    // No damaged telegram accepted, no intact one lost.
+    for (const std::uint64_t i : received) {
+        EXPECT_TRUE(log.intact.count(i) == 1) << "scan " << i << " was not sent intact";
+    }
+    for (const std::uint64_t i : log.intact) {
+        EXPECT_TRUE(received.count(i) == 1) << "intact scan " << i << " was lost";
+    }
+    EXPECT_GT(st.crc_faults + st.drop_faults, 0U);
+    EXPECT_GT(st.garbage_bytes, 0U);
+    EXPECT_GE(st.disconnects, 2U);
+    EXPECT_GE(c.crc_errors + c.bad_headers, st.crc_faults + st.drop_faults - st.disconnects);
+    EXPECT_GE(c.dropped_bytes, st.garbage_bytes);
+    EXPECT_GE(c.reconnects, 2U);
+    EXPECT_GT(received.size(), 60U);
+}
+
+}  // namespace
+}  // namespace casmap::drivers
