@@ -36,8 +36,8 @@ struct TableLimits {
 /// enough that the whole scan footprint over the course is seen after the speed ramp and lasts
 /// until the footprint has passed end_x_m.
 struct CourseConfig {
-    double start_x_m = 0.0;
-    double end_x_m = 5.0;           // 200 rows of 25 mm
+    double start_x_m = 1.0;         // scenes/courses: map region x in [1, 6) m
+    double end_x_m = 6.0;           // 200 rows of 25 mm
     double lateral_offset_m = 0.0;  // course centre line y relative to the linear axis (y = 0)
     double width_m = 2.0;           // 80 columns of 25 mm
 };

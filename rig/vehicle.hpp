@@ -26,8 +26,11 @@ struct VehicleConfig {
     int output_decimation = 1;  // keep every n-th physics step in the trajectory
     double speed_m_s = 1.0;     // set speed of the speed controller
     double speed_ramp_s = 1.0;  // the set speed rises linearly from 0 over this time
-    Eigen::Vector2d start_xy_m = Eigen::Vector2d(0.0, 0.0);  // chassis centre at the start
-    double end_x_m = 5.0;   // the run ends when the scanner passes this x
+    // Chassis centre at the start, and the scanner x that ends the run. The scan line lies
+    // about h / tan(11 deg) = 3.5 m ahead of the scanner: these defaults sweep x in [2.9, 6.6]
+    // on scenes/outdoor.yaml (its vehicle lane is y = -1).
+    Eigen::Vector2d start_xy_m = Eigen::Vector2d(-1.0, -1.0);
+    double end_x_m = 3.0;
     double settle_s = 0.5;  // braked settling on the suspension before t = 0
     // Chassis and running gear (chassis frame: x forward, y left, z up, origin = centre of mass).
     double chassis_mass_kg = 80.0;

@@ -67,6 +67,7 @@ core::Scene FlatBoxScene() {
 
 VehicleConfig ShortDrive() {
     VehicleConfig config;
+    config.start_xy_m = Eigen::Vector2d(0.0, 0.0);
     config.end_x_m = 2.5;
     config.speed_ramp_s = 0.5;
     return config;
