@@ -27,8 +27,8 @@ struct VehicleConfig {
     double speed_m_s = 1.0;     // set speed of the speed controller
     double speed_ramp_s = 1.0;  // the set speed rises linearly from 0 over this time
     // Chassis centre at the start, and the scanner x that ends the run. The scan line lies
-    // about h / tan(11 deg) = 3.5 m ahead of the scanner: these defaults sweep x in [2.9, 6.6]
-    // on scenes/outdoor.yaml (its vehicle lane is y = -1).
+    // about h / tan(11 deg) = 3.1 m ahead of the scanner (h = 0.6 m): these defaults sweep
+    // x in about [2.5, 6.1] on scenes/outdoor.yaml (its vehicle lane is y = -1).
     Eigen::Vector2d start_xy_m = Eigen::Vector2d(-1.0, -1.0);
     double end_x_m = 3.0;
     double settle_s = 0.5;  // braked settling on the suspension before t = 0

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "core/input_error.hpp"
+#include "io/scene_file.hpp"
 
 namespace casmap::rig {
 namespace {
@@ -180,6 +181,32 @@ TEST(Vehicle, RejectsValuesBeyondTheLimitsNamingTheField) {
     c.end_x_m = 60.0;
     EXPECT_THAT([&] { (void)SimulateVehicle(FlatBoxScene(), c); },
                 testing::ThrowsMessage<InputError>(testing::HasSubstr("vehicle.start_xy_m")));
+}
+
+}  // namespace
+}  // namespace casmap::rig
+
+namespace casmap::rig {
+namespace {
+
+TEST(Vehicle, DefaultsDriveTheOutdoorScene) {
+    const core::Scene scene =
+        io::LoadScene(std::string(CASMAP_SOURCE_DIR) + "/scenes/outdoor.yaml");
+    const VehicleConfig config;
+    const VehicleRun run = RunVehicle(scene, config);
+    for (const int n : run.wheels_in_contact) {
+        ASSERT_GE(n, 3);
+    }
+    const core::Pose& last = run.trajectory.samples().back().world_T_sensor;
+    EXPECT_GE(last.translation.x(), config.end_x_m);
+    EXPECT_NEAR(last.translation.y(), config.start_xy_m.y(), 0.1);
+    const Spread spread = PoseSpread(run.trajectory, 1.0);
+    std::printf(
+        "outdoor: %zu poses over %.2f s; z %.4f m, roll %.3f deg, pitch %.3f deg, "
+        "height %.3f m\n",
+        run.trajectory.size(), run.trajectory.EndTime(), spread.z_m, spread.roll_rad / kDeg,
+        spread.pitch_rad / kDeg, last.translation.z());
+    EXPECT_GT(spread.pitch_rad, 0.1 * kDeg);
 }
 
 }  // namespace
