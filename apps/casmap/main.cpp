@@ -10,6 +10,9 @@
 namespace casmap::app {
 // Declarations of the subcommands (defined in *_command.cpp).
 // BEGIN COMMAND DECLARATIONS
+#ifdef CASMAP_WITH_SIM
+void AddTruthCommand(CLI::App& app, CommonOptions& common);
+#endif
 // END COMMAND DECLARATIONS
 }  // namespace casmap::app
 
@@ -19,6 +22,9 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     CommonOptions common;
     // BEGIN COMMAND REGISTRATION
+#ifdef CASMAP_WITH_SIM
+    AddTruthCommand(app, common);
+#endif
     // END COMMAND REGISTRATION
     try {
         app.parse(argc, argv);
