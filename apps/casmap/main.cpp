@@ -13,6 +13,9 @@ namespace casmap::app {
 #ifdef CASMAP_WITH_SIM
 void AddTruthCommand(CLI::App& app, CommonOptions& common);
 #endif
+#ifdef CASMAP_WITH_SIM
+void AddScanCommand(CLI::App& app, CommonOptions& common);
+#endif
 // END COMMAND DECLARATIONS
 }  // namespace casmap::app
 
@@ -24,6 +27,9 @@ int main(int argc, char** argv) {
     // BEGIN COMMAND REGISTRATION
 #ifdef CASMAP_WITH_SIM
     AddTruthCommand(app, common);
+#endif
+#ifdef CASMAP_WITH_SIM
+    AddScanCommand(app, common);
 #endif
     // END COMMAND REGISTRATION
     try {
