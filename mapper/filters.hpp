@@ -35,6 +35,12 @@ struct FilterResult {
                                      const core::MapF& certainty,
                                      const CasParams& params);
 
+/// The same, reusing `out`'s buffers (for repeated calls, e.g. a benchmark or a live map).
+void CasFilterInto(const core::MapF& elevation,
+                   const core::MapF& certainty,
+                   const CasParams& params,
+                   FilterResult& out);
+
 /// Baselines (mapper/baseline_filters.cpp). Every one replicates the edge pixels beyond the
 /// border (OpenCV BORDER_REPLICATE, the mode cv::medianBlur uses internally).
 [[nodiscard]] core::MapF WienerFilter(const core::MapF& elevation, const BaselineParams& params);

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -153,6 +154,42 @@ TEST(CasFilter, WeightedMedianFollowsFig5Skeleton) {
     BaselineParams plain;
     plain.center_weight = 1;
     EXPECT_EQ(CwmFilter(h, plain).at(2, 2), 0.5F);
+}
+
+TEST(CasFilter, FilledPixelsAreThe23rdOfTheFig5Samples) {
+    // Random maps with many holes: every filled pixel (fast 8-lane network path) must equal
+    // the 23rd of its 45 skeleton samples sorted by brute force.
+    const unsigned seed = 2026;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0F, 1.0F);
+    core::MapF h(30, 37);
+    core::MapF c(30, 37);
+    for (std::size_t i = 0; i < h.data.size(); ++i) {
+        const bool hole = u(rng) < 0.3F;
+        c.data[i] = hole ? 0.0F : 15.0F;
+        h.data[i] = hole ? 0.0F : std::round(u(rng) * 8.0F) / 8.0F;  // ties on purpose
+    }
+    const FilterResult r = CasFilter(h, c, CasParams{});
+    int filled = 0;
+    for (int i = 2; i < h.rows - 2; ++i) {
+        for (int j = 2; j < h.cols - 2; ++j) {
+            if (ClassAt(r, i, j) != PixelClass::kFilled) {
+                continue;
+            }
+            std::vector<float> s;
+            for (int di = -2; di <= 2; ++di) {
+                for (int dj = -2; dj <= 2; ++dj) {
+                    const int copies = std::abs(di) + std::abs(dj) <= 1 ? 1 : 2;
+                    s.insert(s.end(), static_cast<std::size_t>(copies), h.at(i + di, j + dj));
+                }
+            }
+            ASSERT_EQ(s.size(), 45U);
+            std::sort(s.begin(), s.end());
+            ASSERT_EQ(r.elevation.at(i, j), s[22]) << "seed " << seed << " at " << i << "," << j;
+            ++filled;
+        }
+    }
+    EXPECT_GT(filled, 100);
 }
 
 TEST(CasFilter, WmEmptySkipLeavesEmptyCellsOut) {

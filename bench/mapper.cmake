@@ -1,0 +1,5 @@
+# Mapper benchmarks: BM_MapperIngest (beams/s), BM_CasFilter vs BM_OpenCvMedian5 (200 x 200).
+if(TARGET casmap::mapper)
+    casmap_add_benchmark(mapper_bench SOURCES ${CMAKE_CURRENT_LIST_DIR}/mapper_bench.cpp
+        DEPS casmap::mapper opencv_core opencv_imgproc)
+endif()
