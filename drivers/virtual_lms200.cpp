@@ -33,6 +33,7 @@ struct Chunk {
     bool power_on_after = false;  // software reset
     std::optional<std::uint64_t> scan_index;
     bool intact = true;
+    double beam0_wall_s = 0.0;
 };
 
 constexpr double kRequestGapTimeoutS = 0.1;  // a request's bytes come within 6 ms (TL 4.3)
@@ -66,7 +67,8 @@ struct VirtualLms200::Impl {
     // Line and mirror.
     std::deque<Chunk> tx;
     Clock::time_point next_byte;
-    Clock::time_point epoch;  // mirror turn 0
+    Clock::time_point epoch;    // mirror turn 0
+    double epoch_wall_s = 0.0;  // the same instant on the system clock
     std::optional<std::int64_t> origin_turn;
     std::optional<std::int64_t> last_sent_unit;  // scan (0x24) or turn (0x2A) last queued
     Clock::time_point last_rx;
@@ -87,6 +89,9 @@ struct VirtualLms200::Impl {
         pty.Open(cfg.link_path, baud);
         const Clock::time_point now = Clock::now();
         epoch = now;
+        epoch_wall_s =
+            std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+                .count();
         next_byte = now;
         last_rx = now;
         next_disconnect = now + Duration(cfg.faults.disconnect_period_s);
@@ -322,6 +327,13 @@ struct VirtualLms200::Impl {
         Chunk c;
         AppendMeasuredValues(values, c.bytes);
         c.scan_index = index;
+        // Completed at the end of turn origin + (unit + 1) * turns (one turn per partial).
+        const std::int64_t end_turn = *origin_turn + (partial ? unit + 1 : (unit + 1) * k);
+        const double sweep_s = partial ? static_cast<double>(variant.angle_deg) / 360.0 *
+                                             core::Lms200Timing::kTurnPeriodS
+                                       : SweepDurationS(variant);
+        c.beam0_wall_s = epoch_wall_s +
+                         static_cast<double>(end_turn) * core::Lms200Timing::kTurnPeriodS - sweep_s;
         EnqueueFrame(std::move(c));
         return true;
     }
@@ -372,7 +384,7 @@ struct VirtualLms200::Impl {
                 ++stats.scans_sent;
             }
             if (observer) {
-                observer(SentScan{*c.scan_index, c.intact});
+                observer(SentScan{*c.scan_index, c.intact, c.beam0_wall_s});
             }
         }
         if (c.baud_after != 0) {
@@ -415,7 +427,7 @@ struct VirtualLms200::Impl {
     void Disconnect(const std::atomic<bool>& stop) {
         for (Chunk& c : tx) {
             if (c.scan_index && observer) {
-                observer(SentScan{*c.scan_index, false});
+                observer(SentScan{*c.scan_index, false, c.beam0_wall_s});
             }
         }
         tx.clear();

@@ -82,6 +82,9 @@ struct VirtualLms200Stats {
 struct SentScan {
     std::uint64_t index = 0;  // ScanSource sweep index
     bool intact = false;      // every byte written unchanged
+    /// When beam 0 of this sweep was measured by the emulated mirror (system clock, s since
+    /// the epoch): the driver's latency-corrected stamp estimates this.
+    double beam0_wall_s = 0.0;
 };
 
 class VirtualLms200 {

@@ -72,6 +72,12 @@ TEST(ServeRecord, At38400EveryScanArrivesIntactAtTheLineRate) {
     for (const core::Scan& s : r.scans) {
         const std::uint64_t index = s.beams[0].raw;
         ExpectSameBeams(s, NumberedSource::Make(index, Variant{}));
+        // Latency correction: 96.9 ms on the line + 6.7 ms sweep taken off the arrival time.
+        // The line is the bottleneck, so a completed sweep also waits up to one scan period
+        // (13.3 ms) for the line, which no host can see: the stamp is late by up to that.
+        const double late_s = s.stamp_s - log.Beam0(index);
+        EXPECT_GT(late_s, -0.004) << "scan " << index;
+        EXPECT_LT(late_s, 1.0 / 75.0 + 0.006) << "scan " << index;
     }
     // 372-byte telegrams at 38400 baud: 96.9 ms each, so about 10.3 scans/s (not 75).
     const double rate = 5.0 / (r.arrival_s[5] - r.arrival_s[0]);
@@ -109,6 +115,7 @@ TEST(ServeRecord, At500000EverySweepArrivesIntact) {
     for (std::size_t i = 0; i < r.scans.size(); ++i) {
         const std::uint64_t index = r.scans[i].beams[0].raw;
         ExpectSameBeams(r.scans[i], NumberedSource::Make(index, Variant{180, 50}));
+        EXPECT_NEAR(r.scans[i].stamp_s, log.Beam0(index), 0.010) << "scan " << index;
         if (i > 0 && index == r.scans[i - 1].beams[0].raw + 1U) {
             ++consecutive;
         }

@@ -4,6 +4,7 @@
 // received scan names the sweep it came from; the other beams are seeded ranges in mm plus a
 // few special codes.
 
+#include <map>
 #include <mutex>
 #include <random>
 #include <set>
@@ -53,9 +54,15 @@ struct SentLog {
     std::mutex mutex;
     std::set<std::uint64_t> intact;
     std::set<std::uint64_t> damaged;
+    std::map<std::uint64_t, double> beam0_wall_s;
     void Record(const SentScan& s) {
         std::lock_guard lock(mutex);
         (s.intact ? intact : damaged).insert(s.index);
+        beam0_wall_s[s.index] = s.beam0_wall_s;
+    }
+    double Beam0(std::uint64_t index) {
+        std::lock_guard lock(mutex);
+        return beam0_wall_s.at(index);
     }
 };
 

@@ -1,0 +1,80 @@
+#include "drivers/pose_file.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "core/input_error.hpp"
+
+namespace casmap::drivers {
+
+core::Trajectory ReadPoseFile(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) {
+        throw MakeInputError(path, "pose file", "", "cannot be opened");
+    }
+    std::vector<core::TimedPose> samples;
+    std::string line;
+    int line_no = 0;
+    while (std::getline(in, line)) {
+        ++line_no;
+        const std::string where = path + ":" + std::to_string(line_no);
+        const std::size_t hash = line.find('#');
+        if (hash != std::string::npos) {
+            line.resize(hash);
+        }
+        std::istringstream fields(line);
+        std::vector<double> v;
+        std::string token;
+        while (fields >> token) {
+            char* end = nullptr;
+            const double x = std::strtod(token.c_str(), &end);
+            if (end == nullptr || *end != '\0' || !std::isfinite(x)) {
+                throw MakeInputError(where, "column " + std::to_string(v.size() + 1), token,
+                                     "a finite number");
+            }
+            v.push_back(x);
+        }
+        if (v.empty()) {
+            continue;
+        }
+        if (v.size() != 8) {
+            throw MakeInputError(where, "columns", std::to_string(v.size()),
+                                 "8: stamp_s x_m y_m z_m qx qy qz qw");
+        }
+        const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
+        if (std::abs(q.norm() - 1.0) > 1e-3) {
+            throw MakeInputError(where, "quaternion norm", std::to_string(q.norm()),
+                                 "unit length within 1e-3");
+        }
+        if (!samples.empty() && !(v[0] > samples.back().stamp_s)) {
+            throw MakeInputError(where, "stamp_s", token, "strictly increasing");
+        }
+        core::TimedPose p;
+        p.stamp_s = v[0];
+        p.world_T_sensor.translation = Eigen::Vector3d(v[1], v[2], v[3]);
+        p.world_T_sensor.rotation = q.normalized();
+        samples.push_back(p);
+    }
+    if (samples.empty()) {
+        throw MakeInputError(path, "pose file", "", "holds no poses");
+    }
+    return core::Trajectory(std::move(samples));
+}
+
+std::string PoseFileText(const core::Trajectory& poses, double offset_s) {
+    std::string text = "# casmap pose file: stamp_s x_m y_m z_m qx qy qz qw (world_T_sensor)\n";
+    char buf[256];
+    for (const core::TimedPose& p : poses.samples()) {
+        const Eigen::Vector3d& t = p.world_T_sensor.translation;
+        const Eigen::Quaterniond& q = p.world_T_sensor.rotation;
+        std::snprintf(buf, sizeof(buf), "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n",
+                      p.stamp_s + offset_s, t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
+        text += buf;
+    }
+    return text;
+}
+
+}  // namespace casmap::drivers

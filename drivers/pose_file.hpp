@@ -1,0 +1,21 @@
+#pragma once
+
+// Timestamped pose files (docs/pose-file.md): one sensor pose world_T_sensor per line,
+//   stamp_s x_m y_m z_m qx qy qz qw
+// whitespace separated, '#' starts a comment, stamps strictly increasing.
+
+#include <string>
+
+#include "core/trajectory.hpp"
+
+namespace casmap::drivers {
+
+/// Reads a pose file. Throws InputError naming file:line, the field and the rule (missing
+/// file, wrong column count, non-numbers, a quaternion far from unit length, stamps not
+/// strictly increasing, no poses).
+[[nodiscard]] core::Trajectory ReadPoseFile(const std::string& path);
+
+/// The pose-file text of `poses` with every stamp shifted by `offset_s`.
+[[nodiscard]] std::string PoseFileText(const core::Trajectory& poses, double offset_s = 0.0);
+
+}  // namespace casmap::drivers
