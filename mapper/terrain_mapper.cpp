@@ -12,21 +12,27 @@ namespace {
 
 // cos(pitch) from R = Rz Ry Rx: the norm of (r21, r22) = (cp sr, cp cr); never below a tiny
 // positive value so the pitch-90-degree singularity yields finite numbers.
-double CosPitch(const Eigen::Matrix3d& r) { return std::max(std::hypot(r(2, 1), r(2, 2)), 1e-12); }
+double CosPitch(const Eigen::Matrix3d& r) {
+    return std::max(std::sqrt(r(2, 1) * r(2, 1) + r(2, 2) * r(2, 2)), 1e-12);
+}
 
 // Walks a trajectory with mostly increasing query times, so the per-beam pose lookup costs a
-// few comparisons instead of a binary search. Interpolation is core::Interpolate (linear in
-// position, slerp in orientation), the same as Trajectory::PoseAt.
+// few comparisons instead of a binary search. Position is interpolated linearly, orientation
+// by normalised linear interpolation of the quaternions (nlerp): between samples a few
+// milliseconds apart it differs from Trajectory::PoseAt's slerp by far less than 1e-7 rad, and
+// it needs no trigonometry (the mapper's budget is 100 ns per beam).
 class PoseCursor {
 public:
     explicit PoseCursor(const core::Trajectory& trajectory) : samples_(trajectory.samples()) {}
 
-    std::optional<core::Pose> At(double t) {
+    bool At(double t, Eigen::Quaterniond& q, Eigen::Vector3d& o) {
         if (samples_.empty() || !(t >= samples_.front().stamp_s) || t > samples_.back().stamp_s) {
-            return std::nullopt;
+            return false;
         }
         if (samples_.size() == 1) {
-            return samples_.front().world_T_sensor;
+            q = samples_.front().world_T_sensor.rotation;
+            o = samples_.front().world_T_sensor.translation;
+            return true;
         }
         if (t < samples_[k_].stamp_s) {
             k_ = 0;  // went backwards: restart (rare)
@@ -37,13 +43,74 @@ public:
         const core::TimedPose& a = samples_[k_];
         const core::TimedPose& b = samples_[k_ + 1];
         const double u = (t - a.stamp_s) / (b.stamp_s - a.stamp_s);
-        return core::Interpolate(a.world_T_sensor, b.world_T_sensor, u);
+        o = a.world_T_sensor.translation +
+            u * (b.world_T_sensor.translation - a.world_T_sensor.translation);
+        const Eigen::Quaterniond& qa = a.world_T_sensor.rotation;
+        Eigen::Quaterniond qb = b.world_T_sensor.rotation;
+        if (qa.dot(qb) < 0.0) {
+            qb.coeffs() = -qb.coeffs();  // the shorter way round, as slerp takes
+        }
+        q.coeffs() = (1.0 - u) * qa.coeffs() + u * qb.coeffs();
+        q.normalize();
+        return true;
     }
 
 private:
     const std::vector<core::TimedPose>& samples_;
     std::size_t k_ = 0;
 };
+
+// atan2(y, x) for the small angle changes between two poses (x > 0, |y| < 0.1 x) by its
+// series (error < 1e-9 rad); std::atan2 otherwise.
+double SmallAngle(double y, double x) {
+    if (x > 0.0 && std::abs(y) < 0.1 * x) {
+        const double r = y / x;
+        const double r2 = r * r;
+        return r * (1.0 - r2 * (1.0 / 3.0 - r2 * (1.0 / 5.0 - r2 * (1.0 / 7.0 - r2 / 9.0))));
+    }
+    return std::atan2(y, x);
+}
+
+// Roll and pitch change from the last rows of two rotation matrices (see MotionBetween).
+void AngleChanges(const Eigen::Vector3d& row_before,
+                  const Eigen::Vector3d& row_after,
+                  BeamMotion& m) {
+    m.d_roll_rad = SmallAngle(row_before.z() * row_after.y() - row_before.y() * row_after.z(),
+                              row_before.z() * row_after.z() + row_before.y() * row_after.y());
+    const double c0 = std::max(
+        std::sqrt(row_before.y() * row_before.y() + row_before.z() * row_before.z()), 1e-12);
+    const double c1 =
+        std::max(std::sqrt(row_after.y() * row_after.y() + row_after.z() * row_after.z()), 1e-12);
+    const double s0 = -row_before.x();
+    const double s1 = -row_after.x();
+    m.d_pitch_rad = SmallAngle(c0 * s1 - s0 * c1, c0 * c1 + s0 * s1);
+}
+
+// Last row of the rotation matrix of a unit quaternion.
+Eigen::Vector3d ZRow(const Eigen::Quaterniond& q) {
+    return {2.0 * (q.x() * q.z() - q.w() * q.y()), 2.0 * (q.y() * q.z() + q.w() * q.x()),
+            1.0 - 2.0 * (q.x() * q.x() + q.y() * q.y())};
+}
+
+// Eq. 4 with the beam direction given as cos/sin of its angle.
+double DeltaZMaxCs(
+    const SensorState& state, double ca, double sa, double range_m, double delta_l_m) {
+    const Eigen::Matrix3d& r = state.world_R_sensor;
+    const double cp = CosPitch(r);
+    const double d_range = r(2, 0) * ca + r(2, 1) * sa;
+    const double d_roll = range_m * r(2, 2) * sa;
+    const double d_pitch = -range_m * (cp * ca - r(2, 0) * r(2, 1) / cp * sa);
+    const BeamMotion& m = state.motion;
+    // Displacement term: the paper's -dy tan(theta) is the slide of the beam up a vertical
+    // face when the sensor moves dy horizontally with its x axis at pitch theta; a vertical
+    // move shifts z one to one. tan(pitch) = |r20| / cp.
+    const double horizontal = std::sqrt(m.displacement_m.x() * m.displacement_m.x() +
+                                        m.displacement_m.y() * m.displacement_m.y());
+    // Sum of magnitudes: a bound on the change, whatever the signs (paper_reading.md item 3).
+    return std::abs(d_range) * delta_l_m + std::abs(d_roll * m.d_roll_rad) +
+           std::abs(d_pitch * m.d_pitch_rad) + std::abs(m.displacement_m.z()) +
+           horizontal * (std::abs(r(2, 0)) / cp);
+}
 
 }  // namespace
 
@@ -83,34 +150,15 @@ ZPartials BeamZPartials(const Eigen::Matrix3d& r, double angle_rad, double range
 }
 
 double DeltaZMax(const SensorState& state, double angle_rad, double range_m, double delta_l_m) {
-    const Eigen::Matrix3d& r = state.world_R_sensor;
-    const ZPartials d = BeamZPartials(r, angle_rad, range_m);
-    const BeamMotion& m = state.motion;
-    // Displacement term: the paper's -dy tan(theta) is the slide of the beam up a vertical
-    // face when the sensor moves dy horizontally with its x axis at pitch theta; a vertical
-    // move shifts z one to one. tan(pitch) = |r20| / cp.
-    const double horizontal = std::hypot(m.displacement_m.x(), m.displacement_m.y());
-    const double tan_pitch = std::abs(r(2, 0)) / CosPitch(r);
-    // Sum of magnitudes: a bound on the change, whatever the signs (paper_reading.md item 3).
-    return std::abs(d.d_range) * delta_l_m + std::abs(d.d_roll * m.d_roll_rad) +
-           std::abs(d.d_pitch * m.d_pitch_rad) + std::abs(m.displacement_m.z()) +
-           horizontal * tan_pitch;
+    return DeltaZMaxCs(state, std::cos(angle_rad), std::sin(angle_rad), range_m, delta_l_m);
 }
 
 BeamMotion MotionBetween(const core::Pose& before, const core::Pose& after) {
-    const Eigen::Matrix3d r0 = before.rotation.toRotationMatrix();
-    const Eigen::Matrix3d r1 = after.rotation.toRotationMatrix();
+    // roll = atan2(r21, r22): the angle from (r22, r21)_before to (r22, r21)_after; pitch =
+    // atan2(-r20, cp): the same angle difference in the (cp, sp) plane.
     BeamMotion m;
     m.displacement_m = after.translation - before.translation;
-    // roll = atan2(r21, r22): the angle from (r22, r21)_before to (r22, r21)_after.
-    m.d_roll_rad = std::atan2(r0(2, 2) * r1(2, 1) - r0(2, 1) * r1(2, 2),
-                              r0(2, 2) * r1(2, 2) + r0(2, 1) * r1(2, 1));
-    // pitch = atan2(-r20, cp): the same angle difference in the (cp, sp) plane.
-    const double c0 = CosPitch(r0);
-    const double c1 = CosPitch(r1);
-    const double s0 = -r0(2, 0);
-    const double s1 = -r1(2, 0);
-    m.d_pitch_rad = std::atan2(c0 * s1 - s0 * c1, c0 * c1 + s0 * s1);
+    AngleChanges(ZRow(before.rotation.normalized()), ZRow(after.rotation.normalized()), m);
     return m;
 }
 
@@ -140,10 +188,14 @@ bool TerrainMapper::AddPoint(const Eigen::Vector3d& p_world, double dz_max_m) {
 }
 
 void TerrainMapper::AddBeam(const SensorState& state, double angle_rad, double range_m) {
-    const Eigen::Vector3d p_sensor(range_m * std::cos(angle_rad), range_m * std::sin(angle_rad),
-                                   0.0);
-    const Eigen::Vector3d p_world = state.world_R_sensor * p_sensor + state.origin_m;
-    if (AddPoint(p_world, DeltaZMax(state, angle_rad, range_m, config_.delta_l_m))) {
+    AddBeamCs(state, std::cos(angle_rad), std::sin(angle_rad), range_m);
+}
+
+void TerrainMapper::AddBeamCs(const SensorState& state, double ca, double sa, double range_m) {
+    const Eigen::Matrix3d& r = state.world_R_sensor;
+    const Eigen::Vector3d p_world =
+        r.col(0) * (range_m * ca) + r.col(1) * (range_m * sa) + state.origin_m;
+    if (AddPoint(p_world, DeltaZMaxCs(state, ca, sa, range_m, config_.delta_l_m))) {
         ++stats_.beams_mapped;
     } else {
         ++stats_.beams_outside;
@@ -151,36 +203,49 @@ void TerrainMapper::AddBeam(const SensorState& state, double angle_rad, double r
 }
 
 void TerrainMapper::AddScan(const core::Scan& scan, const core::Trajectory& world_T_sensor) {
+    const std::size_t n = scan.beams.size();
+    stats_.beams_seen += n;
     if (world_T_sensor.empty()) {
-        stats_.beams_seen += scan.beams.size();
-        stats_.beams_no_pose += scan.beams.size();
+        stats_.beams_no_pose += n;
         return;
+    }
+    // Beam directions, recomputed only when the scan geometry changes.
+    if (n != beam_cos_.size() || scan.start_angle_rad != table_start_rad_ ||
+        scan.angle_step_rad != table_step_rad_) {
+        beam_cos_.resize(n);
+        beam_sin_.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            beam_cos_[i] = std::cos(scan.BeamAngle(i));
+            beam_sin_[i] = std::sin(scan.BeamAngle(i));
+        }
+        table_start_rad_ = scan.start_angle_rad;
+        table_step_rad_ = scan.angle_step_rad;
     }
     PoseCursor now(world_T_sensor);
     PoseCursor before(world_T_sensor);
     const double start_s = world_T_sensor.StartTime();
-    for (std::size_t i = 0; i < scan.beams.size(); ++i) {
-        ++stats_.beams_seen;
+    Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+    Eigen::Quaterniond q0 = Eigen::Quaterniond::Identity();
+    Eigen::Vector3d o0 = Eigen::Vector3d::Zero();
+    SensorState state;
+    for (std::size_t i = 0; i < n; ++i) {
         const core::Beam& beam = scan.beams[i];
         if (beam.status != core::BeamStatus::kOk) {
             ++stats_.beams_not_ok;
             continue;
         }
         const double t = scan.BeamTime(i);
-        const std::optional<core::Pose> pose = now.At(t);
-        if (!pose) {
+        if (!now.At(t, q, state.origin_m)) {
             ++stats_.beams_no_pose;
             continue;
         }
         // The previous measurement was one scan period earlier; before the trajectory
         // starts, the motion since its start stands in (zero at the very first pose).
-        const std::optional<core::Pose> prev =
-            before.At(std::max(t - config_.scan_period_s, start_s));
-        SensorState state;
-        state.world_R_sensor = pose->rotation.toRotationMatrix();
-        state.origin_m = pose->translation;
-        state.motion = MotionBetween(*prev, *pose);
-        AddBeam(state, scan.BeamAngle(i), static_cast<double>(beam.range_m));
+        before.At(std::max(t - config_.scan_period_s, start_s), q0, o0);
+        state.world_R_sensor = q.toRotationMatrix();
+        state.motion.displacement_m = state.origin_m - o0;
+        AngleChanges(ZRow(q0), state.world_R_sensor.row(2).transpose(), state.motion);
+        AddBeamCs(state, beam_cos_[i], beam_sin_[i], static_cast<double>(beam.range_m));
     }
 }
 

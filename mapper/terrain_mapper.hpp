@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <vector>
 
 #include "core/grid.hpp"
 #include "core/pose.hpp"
@@ -91,10 +92,15 @@ public:
     [[nodiscard]] const MapperStats& stats() const { return stats_; }
 
 private:
+    void AddBeamCs(const SensorState& state, double cos_angle, double sin_angle, double range_m);
+
     TerrainMapperConfig config_;
     core::MapF elevation_;
     core::MapF certainty_;
     MapperStats stats_;
+    std::vector<double> beam_cos_, beam_sin_;  // per-beam direction of the last scan geometry
+    double table_start_rad_ = 0.0;
+    double table_step_rad_ = 0.0;
 };
 
 }  // namespace casmap::mapper
