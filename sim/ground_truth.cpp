@@ -13,6 +13,7 @@
 
 #include "core/input_error.hpp"
 #include "core/parallel.hpp"
+#include "sim/box_shape.hpp"
 
 namespace casmap::sim {
 namespace {
@@ -37,19 +38,11 @@ struct Primitives {
 };
 
 void AddBox(const core::BoxShape& box, const core::Pose& pose, Primitives& out) {
-    const Eigen::Vector3d h = 0.5 * box.size_m;
-    std::array<Eigen::Vector3d, 8> p;
-    for (int k = 0; k < 8; ++k) {  // k = (z>0)*4 + (y>0)*2 + (x>0)
-        p[static_cast<std::size_t>(k)] =
-            pose * Eigen::Vector3d((k & 1) != 0 ? h.x() : -h.x(), (k & 2) != 0 ? h.y() : -h.y(),
-                                   (k & 4) != 0 ? h.z() : -h.z());
-    }
-    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& q : quads) {
-        const auto at = [&](int i) { return p[static_cast<std::size_t>(q[i])]; };
-        out.triangles.push_back({{at(0), at(1), at(2)}});
-        out.triangles.push_back({{at(0), at(2), at(3)}});
+    const std::array<Eigen::Vector3d, 8> p = BoxCorners(box, pose);
+    for (const auto& t : kBoxTriangles) {
+        out.triangles.push_back(
+            {{p[static_cast<std::size_t>(t[0])], p[static_cast<std::size_t>(t[1])],
+              p[static_cast<std::size_t>(t[2])]}});
     }
 }
 

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "core/input_error.hpp"
+#include "sim/box_shape.hpp"
 
 namespace casmap::sim {
 namespace {
@@ -191,17 +192,11 @@ struct TriangleSoup {
 
 TriangleSoup BoxTriangles(const core::BoxShape& box, const core::Pose& pose) {
     TriangleSoup soup;
-    const Eigen::Vector3d h = 0.5 * box.size_m;
-    for (int k = 0; k < 8; ++k) {  // vertex k = (z>0)*4 + (y>0)*2 + (x>0)
-        const Eigen::Vector3d p((k & 1) != 0 ? h.x() : -h.x(), (k & 2) != 0 ? h.y() : -h.y(),
-                                (k & 4) != 0 ? h.z() : -h.z());
-        soup.vertices.push_back((pose * p).cast<float>());
+    for (const Eigen::Vector3d& corner : BoxCorners(box, pose)) {
+        soup.vertices.push_back(corner.cast<float>());
     }
-    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& q : quads) {
-        soup.triangles.emplace_back(q[0], q[1], q[2]);
-        soup.triangles.emplace_back(q[0], q[2], q[3]);
+    for (const auto& t : kBoxTriangles) {
+        soup.triangles.emplace_back(t[0], t[1], t[2]);
     }
     return soup;
 }
