@@ -194,6 +194,8 @@ TEST(Table, SameConfigGivesIdenticalTrajectory) {
 
 TEST(Table, DecimationKeepsEveryNthStep) {
     TableConfig config = ShortCourse();
+    const core::Trajectory full = SimulateTable(config, Motion::kT);
+    EXPECT_NEAR(full.samples()[1].stamp_s - full.samples()[0].stamp_s, 1e-3, 1e-12);
     config.output_decimation = 10;
     const core::Trajectory t = SimulateTable(config, Motion::kT);
     EXPECT_NEAR(t.samples()[1].stamp_s - t.samples()[0].stamp_s, 0.01, 1e-12);
