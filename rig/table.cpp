@@ -237,6 +237,74 @@ Commands CommandAt(const SpeedSchedule& schedule,
             TableJoints{x.rate_rad_s, r.rate_rad_s, p.rate_rad_s}};
 }
 
+/// The rotary joints' drive: rigid dead-beat motors, or the compliant spring-damper servo.
+class RotaryDrive {
+public:
+    RotaryDrive(TableBodies& bodies, const TableConfig& config)
+        : dt_(1.0 / config.physics_rate_hz),
+          compliant_(config.compliance.enabled),
+          wn_(2.0 * std::numbers::pi * config.compliance.natural_frequency_hz),
+          zeta_(config.compliance.damping_ratio) {
+        // Inertias of the distal bodies about each axis, taken at the start pose.
+        const btTransform& yoke = bodies.yoke().getCenterOfMassTransform();
+        const btVector3 pitch_pivot = yoke.getOrigin();
+        const btVector3 pitch_axis(0, 1, 0);
+        pitch_inertia_ = InertiaAbout(bodies.yoke(), pitch_pivot, pitch_axis) +
+                         InertiaAbout(bodies.plate(), pitch_pivot, pitch_axis);
+        roll_inertia_ = InertiaAbout(bodies.plate(), yoke * bodies.roll().getAFrame().getOrigin(),
+                                     yoke.getBasis().getColumn(0));
+        if (compliant_) {
+            bodies.pitch().enableMotor(false);
+            bodies.roll().enableMotor(false);
+        }
+    }
+
+    void Apply(TableBodies& bodies,
+               const Commands& cmd,
+               const TableJoints& q,
+               const TableJoints& q_rate) const {
+        if (!compliant_) {
+            // Bullet's hinge motor velocity is that of body A relative to B about the axis:
+            // the opposite sign of our joint rate (B relative to A).
+            const auto max_impulse = static_cast<btScalar>(kMaxMotorTorqueNm * dt_);
+            bodies.pitch().enableAngularMotor(
+                true, static_cast<btScalar>(-(cmd.value.pitch_rad - q.pitch_rad) / dt_),
+                max_impulse);
+            bodies.roll().enableAngularMotor(
+                true, static_cast<btScalar>(-(cmd.value.roll_rad - q.roll_rad) / dt_), max_impulse);
+            return;
+        }
+        // Spring-damper servo with gravity feed-forward (a real drive's integral action), so
+        // the table rings about its command instead of sagging.
+        const btTransform& yoke = bodies.yoke().getCenterOfMassTransform();
+        const btVector3 roll_axis = yoke.getBasis().getColumn(0);
+        const btVector3 roll_pivot = yoke * bodies.roll().getAFrame().getOrigin();
+        const btVector3 pitch_axis =
+            bodies.carriage().getCenterOfMassTransform().getBasis().getColumn(1);
+        const double pitch_torque =
+            Spring(pitch_inertia_, cmd.value.pitch_rad - q.pitch_rad,
+                   cmd.rate.pitch_rad - q_rate.pitch_rad) -
+            GravityTorque({&bodies.yoke(), &bodies.plate()}, yoke.getOrigin(), pitch_axis);
+        const double roll_torque = Spring(roll_inertia_, cmd.value.roll_rad - q.roll_rad,
+                                          cmd.rate.roll_rad - q_rate.roll_rad) -
+                                   GravityTorque({&bodies.plate()}, roll_pivot, roll_axis);
+        ApplyJointTorque(bodies.carriage(), bodies.yoke(), pitch_axis, pitch_torque);
+        ApplyJointTorque(bodies.yoke(), bodies.plate(), roll_axis, roll_torque);
+    }
+
+private:
+    [[nodiscard]] double Spring(double inertia, double error, double error_rate) const {
+        return inertia * (wn_ * wn_ * error + 2.0 * zeta_ * wn_ * error_rate);
+    }
+
+    double dt_;
+    bool compliant_;
+    double wn_;
+    double zeta_;
+    double pitch_inertia_ = 0.0;
+    double roll_inertia_ = 0.0;
+};
+
 }  // namespace
 
 TableRun RunTable(const TableConfig& config, Motion motion) {
@@ -252,21 +320,7 @@ TableRun RunTable(const TableConfig& config, Motion motion) {
     const Commands start = CommandAt(run.schedule, roll, pitch, 0.0);
     TableBodies bodies(geometry, start.value);
     SetStartVelocities(bodies, start.rate);
-    // Spring-damper gains per unit inertia (compliance); inertias taken at the start pose.
-    const double wn = 2.0 * std::numbers::pi * config.compliance.natural_frequency_hz;
-    const double zeta = config.compliance.damping_ratio;
-    const btVector3 pitch_pivot = bodies.yoke().getCenterOfMassPosition();
-    const btVector3 pitch_axis(0, 1, 0);
-    const double pitch_inertia = InertiaAbout(bodies.yoke(), pitch_pivot, pitch_axis) +
-                                 InertiaAbout(bodies.plate(), pitch_pivot, pitch_axis);
-    const btVector3 roll_axis0 = bodies.yoke().getCenterOfMassTransform().getBasis().getColumn(0);
-    const btVector3 roll_pivot0 =
-        bodies.yoke().getCenterOfMassTransform() * bodies.roll().getAFrame().getOrigin();
-    const double roll_inertia = InertiaAbout(bodies.plate(), roll_pivot0, roll_axis0);
-    if (config.compliance.enabled) {
-        bodies.pitch().enableMotor(false);
-        bodies.roll().enableMotor(false);
-    }
+    const RotaryDrive drive(bodies, config);
 
     std::vector<core::TimedPose> samples;
     samples.reserve(static_cast<std::size_t>(steps / config.output_decimation + 1));
@@ -286,35 +340,7 @@ TableRun RunTable(const TableConfig& config, Motion motion) {
         // Dead-beat velocity servo: the motor velocity that lands on the command next step.
         bodies.slider().setTargetLinMotorVelocity(
             static_cast<btScalar>((cmd.value.linear_m - q.linear_m) / dt));
-        if (config.compliance.enabled) {
-            // Spring-damper servo with gravity feed-forward (a real drive's integral action),
-            // so the table rings about its command instead of sagging.
-            const btTransform& yoke = bodies.yoke().getCenterOfMassTransform();
-            const btVector3 roll_axis = yoke.getBasis().getColumn(0);
-            const btVector3 roll_pivot = yoke * bodies.roll().getAFrame().getOrigin();
-            const btVector3 pitch_axis_now =
-                bodies.carriage().getCenterOfMassTransform().getBasis().getColumn(1);
-            const btVector3 pitch_pivot_now = yoke.getOrigin();
-            const double pitch_torque =
-                pitch_inertia * (wn * wn * (cmd.value.pitch_rad - q.pitch_rad) +
-                                 2.0 * zeta * wn * (cmd.rate.pitch_rad - q_rate.pitch_rad)) -
-                GravityTorque({&bodies.yoke(), &bodies.plate()}, pitch_pivot_now, pitch_axis_now);
-            const double roll_torque =
-                roll_inertia * (wn * wn * (cmd.value.roll_rad - q.roll_rad) +
-                                2.0 * zeta * wn * (cmd.rate.roll_rad - q_rate.roll_rad)) -
-                GravityTorque({&bodies.plate()}, roll_pivot, roll_axis);
-            ApplyJointTorque(bodies.carriage(), bodies.yoke(), pitch_axis_now, pitch_torque);
-            ApplyJointTorque(bodies.yoke(), bodies.plate(), roll_axis, roll_torque);
-        } else {
-            // Bullet's hinge motor velocity is that of body A relative to B about the axis: the
-            // opposite sign of our joint rate (B relative to A).
-            const auto max_impulse = static_cast<btScalar>(kMaxMotorTorqueNm * dt);
-            bodies.pitch().enableAngularMotor(
-                true, static_cast<btScalar>(-(cmd.value.pitch_rad - q.pitch_rad) / dt),
-                max_impulse);
-            bodies.roll().enableAngularMotor(
-                true, static_cast<btScalar>(-(cmd.value.roll_rad - q.roll_rad) / dt), max_impulse);
-        }
+        drive.Apply(bodies, cmd, q, q_rate);
         bodies.world().stepSimulation(static_cast<btScalar>(dt), 0, static_cast<btScalar>(dt));
         if ((k + 1) % config.output_decimation == 0 || k + 1 == steps) {
             record(t_next);

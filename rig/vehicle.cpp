@@ -5,8 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numbers>
+#include <string>
+#include <utility>
+#include <variant>
 
 #include "core/input_error.hpp"
 
@@ -228,6 +232,45 @@ int WheelsInContact(const btRaycastVehicle& vehicle) {
     return n;
 }
 
+double ForwardSpeed(const btRigidBody& chassis) {
+    const btTransform& t = chassis.getCenterOfMassTransform();
+    return static_cast<double>(chassis.getLinearVelocity().dot(t.getBasis().getColumn(0)));
+}
+
+/// Speed PI with anti-windup and the ramp's acceleration fed forward.
+class SpeedController {
+public:
+    explicit SpeedController(const VehicleConfig& config) : c_(config) {}
+
+    /// Drive force (N) for the step ending at t_next_s, given the forward speed now.
+    double Force(double t_next_s, double speed_m_s) {
+        const double v_set = c_.speed_m_s * std::min(1.0, t_next_s / c_.speed_ramp_s);
+        const double error = v_set - speed_m_s;
+        // Anti-windup: the integral alone never asks for more than the force limit.
+        const double i_max =
+            c_.speed_ki_n_per_m > 0.0 ? c_.max_drive_force_n / c_.speed_ki_n_per_m : 0.0;
+        integral_ = std::clamp(integral_ + error / c_.physics_rate_hz, -i_max, i_max);
+        // Feed-forward of the ramp's acceleration, so the PI loop only corrects disturbances.
+        const double accel = t_next_s < c_.speed_ramp_s ? c_.speed_m_s / c_.speed_ramp_s : 0.0;
+        return std::clamp(c_.chassis_mass_kg * accel + c_.speed_kp_n_per_m_s * error +
+                              c_.speed_ki_n_per_m * integral_,
+                          -c_.max_drive_force_n, c_.max_drive_force_n);
+    }
+
+private:
+    const VehicleConfig& c_;
+    double integral_ = 0.0;
+};
+
+/// Front-wheel steering (rad) that holds the straight line y = line_y heading +x.
+double SteerToLine(const btRigidBody& chassis, double line_y) {
+    const btTransform& t = chassis.getCenterOfMassTransform();
+    const btVector3 heading = t.getBasis().getColumn(0);
+    const double yaw = std::atan2(heading.y(), heading.x());
+    return std::clamp(kSteerPerMetre * (line_y - t.getOrigin().y()) - kSteerPerRad * yaw,
+                      -kMaxSteerRad, kMaxSteerRad);
+}
+
 }  // namespace
 
 VehicleRun RunVehicle(const core::Scene& scene, const VehicleConfig& config) {
@@ -246,47 +289,24 @@ VehicleRun RunVehicle(const core::Scene& scene, const VehicleConfig& config) {
     VehicleRun run;
     std::vector<core::TimedPose> samples;
     const double start_z = sim.chassis().getCenterOfMassPosition().z();
-    const auto forward_speed = [&] {
-        const btTransform& t = sim.chassis().getCenterOfMassTransform();
-        return static_cast<double>(
-            sim.chassis().getLinearVelocity().dot(t.getBasis().getColumn(0)));
+    const auto sensor_pose = [&] {
+        return FromBt(sim.chassis().getCenterOfMassTransform()) * chassis_T_sensor;
     };
     const auto record = [&](double t_s) {
-        samples.push_back(
-            {t_s, FromBt(sim.chassis().getCenterOfMassTransform()) * chassis_T_sensor});
+        samples.push_back({t_s, sensor_pose()});
         run.wheels_in_contact.push_back(WheelsInContact(sim.vehicle()));
-        run.speed_m_s.push_back(forward_speed());
+        run.speed_m_s.push_back(ForwardSpeed(sim.chassis()));
     };
     record(0.0);
     const double distance = config.end_x_m - samples.front().world_T_sensor.translation.x();
     const double time_limit_s = 3.0 * distance / config.speed_m_s + 2.0 * config.speed_ramp_s + 5.0;
-    double integral = 0.0;
+    SpeedController speed(config);
     for (long k = 0;; ++k) {
         const double t_next = static_cast<double>(k + 1) / config.physics_rate_hz;
-        const double v_set = config.speed_m_s * std::min(1.0, t_next / config.speed_ramp_s);
-        const double error = v_set - forward_speed();
-        // Anti-windup: the integral alone never asks for more than the force limit.
-        const double i_max = config.speed_ki_n_per_m > 0.0
-                                 ? config.max_drive_force_n / config.speed_ki_n_per_m
-                                 : 0.0;
-        integral = std::clamp(integral + error * dt, -i_max, i_max);
-        // Feed-forward of the ramp's acceleration, so the PI loop only corrects disturbances.
-        const double accel =
-            t_next < config.speed_ramp_s ? config.speed_m_s / config.speed_ramp_s : 0.0;
-        const double force =
-            std::clamp(config.chassis_mass_kg * accel + config.speed_kp_n_per_m_s * error +
-                           config.speed_ki_n_per_m * integral,
-                       -config.max_drive_force_n, config.max_drive_force_n);
-        const btTransform& t = sim.chassis().getCenterOfMassTransform();
-        const btVector3 heading = t.getBasis().getColumn(0);
-        const double yaw = std::atan2(heading.y(), heading.x());
-        const double steer = std::clamp(
-            kSteerPerMetre * (config.start_xy_m.y() - t.getOrigin().y()) - kSteerPerRad * yaw,
-            -kMaxSteerRad, kMaxSteerRad);
-        SetDrive(sim.vehicle(), force, 0.0, steer);
+        SetDrive(sim.vehicle(), speed.Force(t_next, ForwardSpeed(sim.chassis())), 0.0,
+                 SteerToLine(sim.chassis(), config.start_xy_m.y()));
         sim.world().stepSimulation(bt_dt, 0, bt_dt);
-        const core::Pose sensor =
-            FromBt(sim.chassis().getCenterOfMassTransform()) * chassis_T_sensor;
+        const core::Pose sensor = sensor_pose();
         const bool done = sensor.translation.x() >= config.end_x_m;
         if ((k + 1) % config.output_decimation == 0 || done) {
             record(t_next);
