@@ -5,4 +5,5 @@
 list(APPEND CASMAP_APP_SIM_SOURCES truth_command.cpp)
 list(APPEND CASMAP_APP_SIM_DEPS casmap::sim)
 list(APPEND CASMAP_APP_SIM_SOURCES scan_command.cpp)
+list(APPEND CASMAP_APP_SIM_SOURCES mixed_pixels_command.cpp)
 list(APPEND CASMAP_APP_SIM_DEPS casmap::sim)

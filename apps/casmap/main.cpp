@@ -15,6 +15,7 @@ void AddTruthCommand(CLI::App& app, CommonOptions& common);
 #endif
 #ifdef CASMAP_WITH_SIM
 void AddScanCommand(CLI::App& app, CommonOptions& common);
+void AddMixedPixelsCommand(CLI::App& app, CommonOptions& common);
 #endif
 // END COMMAND DECLARATIONS
 }  // namespace casmap::app
@@ -30,6 +31,7 @@ int main(int argc, char** argv) {
 #endif
 #ifdef CASMAP_WITH_SIM
     AddScanCommand(app, common);
+    AddMixedPixelsCommand(app, common);
 #endif
     // END COMMAND REGISTRATION
     try {
