@@ -223,9 +223,15 @@ std::uint64_t PulseRng::NextU64() {
 double PulseRng::Uniform() { return static_cast<double>(NextU64() >> 11) * 0x1.0p-53; }
 
 double PulseRng::Normal() {
-    const double u1 = 1.0 - Uniform();  // (0, 1]
-    const double u2 = Uniform();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(kTwoPi * u2);
+    // Marsaglia's polar method: no trigonometry; accepts pi/4 of the draws.
+    for (;;) {
+        const double u = 2.0 * Uniform() - 1.0;
+        const double v = 2.0 * Uniform() - 1.0;
+        const double s = u * u + v * v;
+        if (s > 0.0 && s < 1.0) {
+            return u * std::sqrt(-2.0 * std::log(s) / s);
+        }
+    }
 }
 
 std::size_t WaveformLobes(std::span<const EchoSample> sorted,
@@ -248,29 +254,39 @@ std::size_t WaveformLobes(std::span<const EchoSample> sorted,
     return count;
 }
 
-Lobe CompactLobe(std::span<const EchoSample> sorted, double echo_width_m) {
+Lobe CompactLobe(std::span<const EchoSample> samples, double echo_width_m) {
     const double sigma = echo_width_m / kFwhmPerSigma;
+    Lobe lobe;
+    if (samples.empty()) {
+        return lobe;
+    }
+    // One pass, moments about the first range (no cancellation for ranges of many metres).
+    const double r0 = samples.front().range_m;
     double e = 0.0;
     double m1 = 0.0;
-    for (const EchoSample& s : sorted) {
+    double m2 = 0.0;
+    double lo = r0;
+    double hi = r0;
+    for (const EchoSample& s : samples) {
+        const double d = s.range_m - r0;
         e += s.energy;
-        m1 += s.energy * s.range_m;
+        m1 += s.energy * d;
+        m2 += s.energy * d * d;
+        lo = std::min(lo, s.range_m);
+        hi = std::max(hi, s.range_m);
     }
-    Lobe lobe;
     if (!(e > 0.0)) {
         return lobe;
     }
     const double mean = m1 / e;
-    double var = 0.0;
-    for (const EchoSample& s : sorted) {
-        var += s.energy * (s.range_m - mean) * (s.range_m - mean);
-    }
-    var /= e;
-    lobe.peak = e * std::exp(-var / (2.0 * sigma * sigma));
-    lobe.peak_range_m = mean;
-    lobe.centroid_m = mean;
-    lobe.lo_m = sorted.front().range_m;
-    lobe.hi_m = sorted.back().range_m;
+    const double var = std::max(0.0, m2 / e - mean * mean);
+    // exp(-x) to fourth order: x <= 0.016 for spreads up to compact_spread_m (error < 3e-9).
+    const double x = var / (2.0 * sigma * sigma);
+    lobe.peak = x < 0.02 ? e * (1.0 - x * (1.0 - x * (0.5 - x * (1.0 / 6.0)))) : e * std::exp(-x);
+    lobe.peak_range_m = r0 + mean;
+    lobe.centroid_m = r0 + mean;
+    lobe.lo_m = lo;
+    lobe.hi_m = hi;
     return lobe;
 }
 
@@ -402,10 +418,21 @@ void Lms200Model::PulseSubrays(std::uint64_t scan_index,
     Eigen::Vector3d u2 = rot.col(2);                           // across it
     if (config_.rotate_pattern_per_pulse && subray_count_ > 1) {
         // One rotation of the whole pattern per pulse: rotate the transverse basis instead.
+        // A uniform angle as a random point of the unit disc, normalised (no trigonometry).
         PulseRng rng(seed_, scan_index, static_cast<std::uint32_t>(beam), kStreamPattern);
-        const double angle = kTwoPi * rng.Uniform();
-        const double c = std::cos(angle);
-        const double s = std::sin(angle);
+        double c = 1.0;
+        double s = 0.0;
+        for (;;) {
+            c = 2.0 * rng.Uniform() - 1.0;
+            s = 2.0 * rng.Uniform() - 1.0;
+            const double r2 = c * c + s * s;
+            if (r2 > 1e-12 && r2 <= 1.0) {
+                const double inv = 1.0 / std::sqrt(r2);
+                c *= inv;
+                s *= inv;
+                break;
+            }
+        }
         const Eigen::Vector3d v1 = c * u1 + s * u2;
         u2 = c * u2 - s * u1;
         u1 = v1;
@@ -498,11 +525,13 @@ PulseResult Lms200Model::FormReturn(const PulseContext& pulse,
     }
     // Echo energies, Lambertian lidar equation E = w rho cos(theta) / r^2, scaled so that a
     // full-footprint 10 % target at R10 gives exactly the threshold 1 (sensor_model.md 4.2).
-    // Sorted by range (insertion sort; at most 37 entries).
+    // Sorted by range (insertion sort, at most 37 entries) unless one span covers them all.
     ScratchArray<EchoSample, kMaxSubrays> samples;
     ScratchArray<std::size_t, kMaxSubrays> source;
     std::size_t n = 0;
     double in_range_weight = 0.0;
+    double r_lo = std::numeric_limits<double>::infinity();
+    double r_hi = -r_lo;
     const double scale = config_.r10_m * config_.r10_m / config_.r10_reflectivity;
     const std::size_t count = std::min(hits.size(), subray_count_);
     samples.Construct(count);
@@ -516,16 +545,29 @@ PulseResult Lms200Model::FormReturn(const PulseContext& pulse,
             in_range_weight += weights_[i];
         }
         const double d = std::max(h.distance_m, 1e-3);
-        const EchoSample e{
-            h.distance_m,
-            weights_[i] * h.reflectivity * std::clamp(h.cos_incidence, 0.0, 1.0) * scale / (d * d)};
-        std::size_t j = n++;
-        for (; j > 0 && samples[j - 1].range_m > e.range_m; --j) {
-            samples[j] = samples[j - 1];
-            source[j] = source[j - 1];
+        samples[n] =
+            EchoSample{h.distance_m, weights_[i] * h.reflectivity *
+                                         std::clamp(h.cos_incidence, 0.0, 1.0) * scale / (d * d)};
+        source[n++] = i;
+        r_lo = std::min(r_lo, h.distance_m);
+        r_hi = std::max(r_hi, h.distance_m);
+    }
+    const bool compact = config_.return_algorithm == ReturnAlgorithm::kAuto &&
+                         r_hi - r_lo <= config_.compact_spread_m;
+    // One surface group when all hits lie within the mixed tolerance (see the labels below).
+    const bool one_group = compact && r_hi - r_lo <= config_.mixed_tolerance_m;
+    if (!one_group) {
+        for (std::size_t k = 1; k < n; ++k) {
+            const EchoSample e = samples[k];
+            const std::size_t src = source[k];
+            std::size_t j = k;
+            for (; j > 0 && samples[j - 1].range_m > e.range_m; --j) {
+                samples[j] = samples[j - 1];
+                source[j] = source[j - 1];
+            }
+            samples[j] = e;
+            source[j] = src;
         }
-        samples[j] = e;
-        source[j] = i;
     }
     const bool target = in_range_weight >= config_.target_min_weight - 1e-12;
     const core::BeamLabel lost = target ? core::BeamLabel::kMissing : core::BeamLabel::kNoTarget;
@@ -542,7 +584,7 @@ PulseResult Lms200Model::FormReturn(const PulseContext& pulse,
             return r;
         }
         if (target && u_short < config_.p_short) {
-            const double near = std::max(samples[0].range_m, r_min);
+            const double near = std::max(r_lo, r_min);
             SetSpike(r_min + u_value * (near - r_min), r);
             return r;
         }
@@ -572,8 +614,7 @@ PulseResult Lms200Model::FormReturn(const PulseContext& pulse,
     const std::span<const EchoSample> sorted(samples.data(), n);
     ScratchArray<Lobe, kMaxSubrays> lobes;
     std::size_t n_lobes = 0;
-    if (config_.return_algorithm == ReturnAlgorithm::kAuto &&
-        samples[n - 1].range_m - samples[0].range_m <= config_.compact_spread_m) {
+    if (compact) {
         lobes.Construct(1);
         lobes[0] = CompactLobe(sorted, config_.echo_width_m);
         n_lobes = 1;
@@ -656,19 +697,25 @@ PulseResult Lms200Model::FormReturn(const PulseContext& pulse,
     // Truth: surfaces are runs of sub-ray hits chained by gaps <= tol; the echo is mixed when
     // its noise-free range is farther than tol from every surface (docs/sensor-model.md).
     const double tol = config_.mixed_tolerance_m;
-    double nearest = std::numeric_limits<double>::infinity();
-    double lo = samples[0].range_m;
-    double hi = lo;
-    for (std::size_t k = 1; k <= n; ++k) {
-        if (k < n && samples[k].range_m - hi <= tol) {
-            hi = samples[k].range_m;
-            continue;
-        }
-        const double c = echo->centroid_m;
-        nearest = std::min(nearest, c < lo ? lo - c : (c > hi ? c - hi : 0.0));
-        if (k < n) {
-            lo = samples[k].range_m;
-            hi = lo;
+    const double c = echo->centroid_m;
+    const auto gap = [c](double lo, double hi) {
+        return c < lo ? lo - c : (c > hi ? c - hi : 0.0);
+    };
+    double nearest = gap(r_lo, r_hi);
+    if (!one_group) {
+        nearest = std::numeric_limits<double>::infinity();
+        double lo = samples[0].range_m;
+        double hi = lo;
+        for (std::size_t k = 1; k <= n; ++k) {
+            if (k < n && samples[k].range_m - hi <= tol) {
+                hi = samples[k].range_m;
+                continue;
+            }
+            nearest = std::min(nearest, gap(lo, hi));
+            if (k < n) {
+                lo = samples[k].range_m;
+                hi = lo;
+            }
         }
     }
     r.label = nearest > tol ? core::BeamLabel::kMixed : core::BeamLabel::kValid;

@@ -83,8 +83,9 @@ std::size_t WaveformLobes(std::span<const EchoSample> sorted,
                           std::span<Lobe> out);
 
 /// Closed form for hits that span much less than the echo width: one lobe at the
-/// energy-weighted mean range, peak sum(E) exp(-var / (2 sigma^2)) (second order in spread).
-[[nodiscard]] Lobe CompactLobe(std::span<const EchoSample> sorted, double echo_width_m);
+/// energy-weighted mean range, peak sum(E) exp(-var / (2 sigma^2)) (second order in spread),
+/// bounds = the hits' extent. Any order.
+[[nodiscard]] Lobe CompactLobe(std::span<const EchoSample> samples, double echo_width_m);
 
 /// Energy fractions of the sub-rays of a Gaussian beam I ~ exp(-2 rho^2) (rho in units of the
 /// 1/e^2 radius): each ring gets its annulus' energy, split evenly. Sums to 1.
