@@ -128,6 +128,29 @@ TEST(Simulator, EveryPulseUsesThePoseOfItsOwnTime) {
     EXPECT_THROW((void)CastScan(world, model, traj, 0.999, 1), InputError);
 }
 
+TEST(Simulator, QuarterDegreeBeamsComeFromFourInterleavedTurns) {
+    core::Scene scene;
+    scene.objects.push_back(Box("wall", {0.2, 40.0, 4.0}, {6.1, 0.0, 0.0}));  // face at x = 6
+    const World world(scene);
+    sensor_models::Lms200Config c;
+    c.ideal = true;
+    c.angular_resolution_deg = 0.25;
+    c.field_of_view_deg = 100.0;
+    const sensor_models::Lms200Model model{c};
+    const double v = 10.0;
+    core::Trajectory traj({core::TimedPose{0.0, core::Pose{}},
+                           core::TimedPose{1.0, core::Pose{{v, 0.0, 0.0}, {1, 0, 0, 0}}}});
+    const ScanResult r = CastScan(world, model, traj, 0.2, 0);
+    ASSERT_EQ(r.scan.beams.size(), 401U);
+    for (std::size_t i = 0; i < 401; ++i) {
+        const double x = v * r.scan.BeamTime(i);
+        EXPECT_NEAR(r.scan.beams[i].range_m, (6.0 - x) / std::cos(model.BeamAngleRad(i)), 1e-3)
+            << i;
+    }
+    // Neighbouring beams are one mirror turn (13.3 ms, 0.133 m of travel) apart.
+    EXPECT_NEAR(r.scan.beams[200].range_m - r.scan.beams[201].range_m, v / 75.0, 2e-3);
+}
+
 // A foreground plate (x = 2, y < 0) before a background wall at x = 2 + gap.
 World EdgeWorld(double gap_m) {
     core::Scene scene;
