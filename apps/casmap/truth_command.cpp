@@ -1,20 +1,18 @@
-// casmap truth --scene FILE --grid X0,Y0,CELL_M,ROWS,COLS --out FILE.tiff [--rule highest|centre]
+// casmap truth --scene FILE --grid X0,Y0,CELL_M,ROWS,COLS --out FILE.tiff [--png FILE.png]
+//              [--rule highest|centre] [--keep-below-datum]
 // The exact ground-truth elevation map of a scene (sim/ground_truth.hpp) as a single-channel
 // 32-bit float TIFF in metres; rows along world x, columns along y (DESIGN.md "Map grid").
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
 
 #include "apps/casmap/commands.hpp"
 #include "core/grid.hpp"
 #include "core/input_error.hpp"
-#include "io/atomic_file.hpp"
+#include "io/image.hpp"
 #include "io/scene_file.hpp"
 #include "sim/ground_truth.hpp"
 
@@ -27,6 +25,7 @@ struct TruthOptions {
     std::string out;
     std::string rule = "highest";
     bool keep_below_datum = false;
+    std::string png;  // optional colour PNG for people
 };
 
 // "X0,Y0,CELL_M,ROWS,COLS" -> GridGeometry; throws InputError naming --grid and the rule.
@@ -79,27 +78,13 @@ core::GridGeometry ParseTruthGrid(const std::string& text) {
     return grid;
 }
 
-void WriteFloatTiff(const std::filesystem::path& path, const core::MapF& map) {
-    io::WriteAtomically(path, [&](const std::filesystem::path& tmp) {
-        const cv::Mat image(map.rows, map.cols, CV_32FC1, const_cast<float*>(map.data.data()));
-        std::vector<unsigned char> bytes;
-        if (!cv::imencode(".tiff", image, bytes)) {
-            throw MakeInputError(path.string(), "--out", "", "TIFF encoding failed");
-        }
-        std::ofstream out(tmp, std::ios::binary);
-        out.write(reinterpret_cast<const char*>(bytes.data()),
-                  static_cast<std::streamsize>(bytes.size()));
-        out.close();
-        if (!out) {
-            throw MakeInputError(path.string(), "--out", "", "write failed");
-        }
-    });
-}
-
 void RunTruth(const TruthOptions& opt, const CommonOptions& common) {
     const std::string ext = std::filesystem::path(opt.out).extension().string();
     if (ext != ".tiff" && ext != ".tif") {
         throw MakeInputError("command line", "--out", opt.out, "must end in .tiff or .tif");
+    }
+    if (!opt.png.empty() && std::filesystem::path(opt.png).extension() != ".png") {
+        throw MakeInputError("command line", "--png", opt.png, "must end in .png");
     }
     const core::GridGeometry grid = ParseTruthGrid(opt.grid);
     sim::GroundTruthOptions options;
@@ -108,7 +93,12 @@ void RunTruth(const TruthOptions& opt, const CommonOptions& common) {
     options.clamp_to_datum = !opt.keep_below_datum;
     const core::Scene scene = io::LoadScene(opt.scene);
     const core::MapF map = sim::GroundTruthElevation(scene, grid, options, common.threads);
-    WriteFloatTiff(opt.out, map);
+    io::WriteMapTiff(opt.out, map);
+    if (!opt.png.empty()) {
+        io::PngStyle style;
+        style.title = "ground truth: " + opt.scene;
+        io::WriteMapPng(opt.png, map, style);
+    }
     const auto [lo, hi] = std::minmax_element(map.data.begin(), map.data.end());
     std::printf("wrote %s: %d x %d cells of %g m, elevation %.4f .. %.4f m (%s rule)\n",
                 opt.out.c_str(), grid.rows, grid.cols, grid.cell_m, static_cast<double>(*lo),
@@ -128,6 +118,7 @@ void AddTruthCommand(CLI::App& app, CommonOptions& common) {
                     "highest: highest surface point in the cell (default); centre: at the cell "
                     "centre")
         ->check(CLI::IsMember({"highest", "centre"}));
+    sub->add_option("--png", opt->png, "also write a colour PNG of the map");
     sub->add_flag("--keep-below-datum", opt->keep_below_datum,
                   "keep surfaces below z = 0 instead of reporting 0 there");
     AddThreadsOption(sub, common);
