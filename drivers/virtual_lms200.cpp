@@ -459,7 +459,10 @@ struct VirtualLms200::Impl {
         if (!tx.empty()) {
             wait = std::max(kMinWaitS, Seconds(next_byte - now));
         } else if (op_mode == mode::kStreamAll || op_mode == mode::kStreamPartial) {
-            wait = std::min(wait, core::Lms200Timing::kTurnPeriodS / 4.0);
+            // Wake just after the next mirror turn ends: a completed sweep goes out at once.
+            const double turn_s = core::Lms200Timing::kTurnPeriodS;
+            const double next_turn_s = static_cast<double>(TurnsDone(now) + 1) * turn_s;
+            wait = std::min(wait, next_turn_s - Seconds(now - epoch) + 1e-4);
         }
         if (cfg.faults.disconnect_period_s > 0.0) {
             wait = std::min(wait, std::max(0.0, Seconds(next_disconnect - now)));
@@ -517,10 +520,20 @@ void VirtualLms200::Stop() {
     impl_->pty.Close();
 }
 
+void VirtualLms200::Open() {
+    if (!impl_->pty.IsOpen()) {
+        impl_->Open();
+    }
+}
+
 void VirtualLms200::Run(const std::atomic<bool>& stop, bool stop_when_exhausted) {
-    impl_->Open();
+    Open();
     impl_->Loop(stop, stop_when_exhausted);
     std::lock_guard lock(impl_->mutex);
+    const Clock::time_point until = Clock::now() + std::chrono::seconds(1);
+    while (!stop && impl_->pty.Unread() > 0 && Clock::now() < until) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
     impl_->pty.Close();
 }
 

@@ -100,8 +100,12 @@ public:
     void Start();
     /// Stops the thread, closes the pty and removes the link.
     void Stop();
-    /// Creates the pty and serves it on the calling thread until `stop` becomes true
-    /// (or the source is exhausted and `stop_when_exhausted`).
+    /// Creates the pseudo-terminal (and link) without serving it yet (SlavePath() is then
+    /// known). Throws like Start().
+    void Open();
+    /// Serves on the calling thread (opening the pty first if needed) until `stop` becomes
+    /// true, or, with `stop_when_exhausted`, the source is exhausted and the client has read
+    /// the last telegram (waiting at most 1 s for that).
     void Run(const std::atomic<bool>& stop, bool stop_when_exhausted = false);
 
     /// Current slave device path (changes after each disconnect).
