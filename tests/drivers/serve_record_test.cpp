@@ -132,8 +132,8 @@ TEST(ServeRecord, FaultsAreRejectedAndCountedAndTheDriverRecovers) {
     NumberedSource source;
     VirtualLms200Config vc;
     vc.link_path = LinkPath("faults");
-    vc.faults = ParseFaults("crc=0.04,garbage=0.04,drop=0.04,disconnect=0.7");
-    vc.faults.offline_s = 0.2;
+    vc.faults = ParseFaults("crc=0.04,garbage=0.04,drop=0.04,disconnect=0.5");
+    vc.faults.offline_s = 0.15;
     vc.faults.seed = 4242;
     std::printf("fault seed %llu\n", static_cast<unsigned long long>(vc.faults.seed));
     VirtualLms200 scanner(vc, source);
@@ -147,7 +147,7 @@ TEST(ServeRecord, FaultsAreRejectedAndCountedAndTheDriverRecovers) {
     Lms200Driver driver(dc);
     driver.Connect();
     std::set<std::uint64_t> received;
-    const Clock::time_point end = Clock::now() + std::chrono::milliseconds(1600);
+    const Clock::time_point end = Clock::now() + std::chrono::milliseconds(1300);
     while (Clock::now() < end) {
         std::optional<core::Scan> s = driver.NextScan(1.0);
         if (!s) {
