@@ -17,6 +17,8 @@ void AddTruthCommand(CLI::App& app, CommonOptions& common);
 void AddScanCommand(CLI::App& app, CommonOptions& common);
 void AddMixedPixelsCommand(CLI::App& app, CommonOptions& common);
 #endif
+void AddFilterCommand(CLI::App& app, CommonOptions& common);
+void AddDemoCommand(CLI::App& app, CommonOptions& common);
 // END COMMAND DECLARATIONS
 }  // namespace casmap::app
 
@@ -33,6 +35,8 @@ int main(int argc, char** argv) {
     AddScanCommand(app, common);
     AddMixedPixelsCommand(app, common);
 #endif
+    AddFilterCommand(app, common);
+    AddDemoCommand(app, common);
     // END COMMAND REGISTRATION
     try {
         app.parse(argc, argv);

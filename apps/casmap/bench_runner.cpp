@@ -1,0 +1,240 @@
+#include "apps/casmap/bench_runner.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include "core/input_error.hpp"
+#include "core/parallel.hpp"
+#include "io/scene_file.hpp"
+#include "mapper/filters.hpp"
+#include "mapper/metrics.hpp"
+#include "sensor_models/lms200_model.hpp"
+#include "sim/ground_truth.hpp"
+
+#ifndef CASMAP_COURSES_DIR
+#define CASMAP_COURSES_DIR ""
+#endif
+
+namespace casmap::app {
+namespace {
+namespace fs = std::filesystem;
+
+std::vector<std::string> Split(const std::string& text, char sep) {
+    std::vector<std::string> parts;
+    std::stringstream in(text);
+    for (std::string part; std::getline(in, part, sep);) {
+        parts.push_back(part);
+    }
+    return parts;
+}
+
+bool ParseInt(const std::string& s, int& v) {
+    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    return ec == std::errc() && ptr == s.data() + s.size() && !s.empty();
+}
+
+/// RMSE against truth over the cells CAS filled inside `region` (NaN if none).
+double FillError(const core::MapF& map,
+                 const core::MapF& truth,
+                 const mapper::ClassMap& cas_classes,
+                 const mapper::Region& region) {
+    double sum = 0.0;
+    std::int64_t n = 0;
+    for (int r = region.row0; r < region.row0 + region.rows; ++r) {
+        for (int c = region.col0; c < region.col0 + region.cols; ++c) {
+            if (cas_classes.at(r, c) == static_cast<std::uint8_t>(mapper::PixelClass::kFilled)) {
+                const double d = static_cast<double>(map.at(r, c)) - truth.at(r, c);
+                sum += d * d;
+                ++n;
+            }
+        }
+    }
+    return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : std::nan("");
+}
+
+}  // namespace
+
+std::vector<int> ParseCourses(const std::string& text, const std::string& field) {
+    const std::string rule =
+        "allowed: courses 1..16 as N, N-M or a comma list, e.g. 1-16 or 1,4,7-9";
+    std::set<int> out;
+    for (const std::string& part : Split(text, ',')) {
+        const std::size_t dash = part.find('-');
+        int lo = 0;
+        int hi = 0;
+        const bool ok = dash == std::string::npos ? ParseInt(part, lo) && ((hi = lo), true)
+                                                  : ParseInt(part.substr(0, dash), lo) &&
+                                                        ParseInt(part.substr(dash + 1), hi);
+        if (!ok || lo < 1 || hi > 16 || lo > hi) {
+            throw MakeInputError("", field, text,
+                                 rule + (ok && lo > hi ? " (inverted range)" : ""));
+        }
+        for (int c = lo; c <= hi; ++c) {
+            out.insert(c);
+        }
+    }
+    if (out.empty()) {
+        throw MakeInputError("", field, text, rule);
+    }
+    return {out.begin(), out.end()};
+}
+
+std::vector<std::string> ParseTests(const std::string& text, const std::string& field) {
+    static const std::vector<std::string> kAll = {"T", "TR", "TP", "TRP"};
+    std::set<std::string> given;
+    for (const std::string& part : Split(text, ',')) {
+        if (std::find(kAll.begin(), kAll.end(), part) == kAll.end()) {
+            throw MakeInputError("", field, part, "allowed: T, TR, TP, TRP (comma separated)");
+        }
+        given.insert(part);
+    }
+    if (given.empty()) {
+        throw MakeInputError("", field, text, "allowed: T, TR, TP, TRP (comma separated)");
+    }
+    std::vector<std::string> out;
+    for (const std::string& t : kAll) {
+        if (given.count(t) != 0) {
+            out.push_back(t);
+        }
+    }
+    return out;
+}
+
+std::string FindCoursesDir(const std::string& flag) {
+    if (!flag.empty()) {
+        if (!fs::is_directory(flag)) {
+            throw MakeInputError("", "--courses-dir", flag, "is not a directory");
+        }
+        return flag;
+    }
+    for (const std::string dir : {std::string("scenes/courses"), std::string(CASMAP_COURSES_DIR)}) {
+        if (!dir.empty() && fs::is_regular_file(fs::path(dir) / "course01.yaml")) {
+            return dir;
+        }
+    }
+    throw MakeInputError("", "--courses-dir", "",
+                         "scenes/courses not found here or in the source tree; give --courses-dir");
+}
+
+std::string CoursePath(const std::string& dir, int course) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "course%02d.yaml", course);
+    return (fs::path(dir) / name).string();
+}
+
+std::string RunName(int course, const std::string& test) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "course%02d_%s", course, test.c_str());
+    return name;
+}
+
+SimSetup BenchSetup(const BenchSettings& settings, int course, const std::string& test) {
+    SimFlags flags;
+    flags.scene_path = CoursePath(settings.courses_dir, course);
+    flags.motion = test;
+    flags.seed = settings.seed;
+    flags.rig_path = settings.rig_path;
+    flags.speed_m_s = settings.speed_m_s;
+    return ResolveSimSetup(flags);
+}
+
+std::vector<Course> LoadCourses(const BenchSettings& settings,
+                                const std::vector<int>& courses,
+                                const core::GridGeometry& grid,
+                                int threads) {
+    std::vector<Course> out(courses.size());
+    core::ParallelFor(courses.size(), threads, [&](std::size_t i) {
+        Course& c = out[i];
+        c.number = courses[i];
+        c.path = CoursePath(settings.courses_dir, c.number);
+        c.scene = io::LoadScene(c.path);
+        c.world = std::make_unique<sim::World>(c.scene);
+        c.truth = sim::GroundTruthElevation(c.scene, grid, 1);
+    });
+    return out;
+}
+
+MappedBenchRun SimulateAndMap(const SimSetup& setup,
+                              const Course& course,
+                              const core::Trajectory& poses,
+                              int a) {
+    SimulatedRun sim = SimulateRun(setup, course.scene, *course.world, poses, 1, nullptr, false);
+    MappedBenchRun run;
+    run.test = setup.motion_name;
+    run.course = course.number;
+    run.setup = setup;
+    run.scans = sim.run.scans.size();
+    MapSettings settings;
+    settings.a = a;
+    run.mapped = MapScans(sim.run.scans, sim.run.poses, setup.grid, settings);
+    run.config_yaml = sim.run.config_yaml;
+    return run;
+}
+
+mapper::FilterParams RunFilterParams(const MappedBenchRun& run,
+                                     const std::vector<std::string>& overrides) {
+    mapper::FilterParams p;
+    p.cas.cell_m = run.setup.grid.cell_m;
+    p.cas.speed_m_s = run.setup.table.speed_m_s;
+    p.cas.scan_period_s = sensor_models::Lms200Model(run.setup.lms).ScanPeriodS();
+    p.cas.a = run.mapped.config.a;
+    for (const std::string& o : overrides) {
+        p.SetAssignment(o);
+    }
+    p.Validate();
+    return p;
+}
+
+BenchRun ScoreRun(const MappedBenchRun& run,
+                  const Course& course,
+                  const mapper::FilterParams& params,
+                  SheetMaps* sheet) {
+    const core::MapF& raw = run.mapped.elevation;
+    const core::MapF& c = run.mapped.certainty;
+    const mapper::Region region = mapper::PaperRegion(raw.rows, raw.cols);
+    BenchRun out;
+    out.course = run.course;
+    out.test = run.test;
+    out.seed = run.setup.seed;
+    out.scans = static_cast<std::int64_t>(run.scans);
+    const mapper::FilterResult cas = mapper::RunFilter(mapper::FilterMethod::kCas, raw, c, params);
+    out.cas_classes = mapper::ClassPercentages(cas.classes, c);
+    for (const mapper::FilterMethod m : mapper::AllFilterMethods()) {
+        const std::string name(mapper::ToString(m));
+        const mapper::FilterResult result =
+            m == mapper::FilterMethod::kCas ? cas : mapper::RunFilter(m, raw, c, params);
+        const mapper::FilterMetrics metrics =
+            mapper::EvaluateFilter(result, raw, course.truth, region);
+        out.filters[name] =
+            FilterScore{metrics.pi, metrics.rmse_m, metrics.spikes,
+                        FillError(result.elevation, course.truth, cas.classes, region)};
+        out.raw_rmse_m = metrics.raw_rmse_m;
+        out.raw_spikes = metrics.raw_spikes;
+        if (sheet != nullptr) {
+            sheet->filtered[name] = result.elevation;
+        }
+    }
+    if (sheet != nullptr) {
+        sheet->raw = raw;
+        sheet->certainty = c;
+        sheet->truth = course.truth;
+    }
+    return out;
+}
+
+CasScore ScoreCas(const MappedBenchRun& run,
+                  const Course& course,
+                  const mapper::FilterParams& params) {
+    const core::MapF& raw = run.mapped.elevation;
+    const mapper::FilterResult cas =
+        mapper::RunFilter(mapper::FilterMethod::kCas, raw, run.mapped.certainty, params);
+    const mapper::Region region = mapper::PaperRegion(raw.rows, raw.cols);
+    return CasScore{mapper::PerformanceIndex(cas.elevation, raw, course.truth, region),
+                    mapper::ClassPercentages(cas.classes, run.mapped.certainty)};
+}
+
+}  // namespace casmap::app

@@ -1,0 +1,98 @@
+#pragma once
+
+// The paper's benchmark as building blocks for `casmap bench` and `casmap sweep`: the obstacle
+// courses (scene, Embree world, ground truth), the table trajectories per test, one simulated
+// and mapped run per course x test, and the scoring of the five filters against the truth.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "apps/casmap/benchmark_report.hpp"
+#include "apps/casmap/pipeline.hpp"
+#include "apps/casmap/sim_pipeline.hpp"
+#include "mapper/filter_params.hpp"
+
+namespace casmap::app {
+
+/// "1-16", "4", "1,3,7-9" -> sorted unique courses in 1..16; InputError naming `field`.
+[[nodiscard]] std::vector<int> ParseCourses(const std::string& text, const std::string& field);
+/// "T,TR,TP,TRP" subset, in that order; InputError naming `field`.
+[[nodiscard]] std::vector<std::string> ParseTests(const std::string& text,
+                                                  const std::string& field);
+/// The scenes/courses directory: `flag` if given, else ./scenes/courses, else the source
+/// tree's. InputError if none exists.
+[[nodiscard]] std::string FindCoursesDir(const std::string& flag);
+/// <dir>/courseNN.yaml.
+[[nodiscard]] std::string CoursePath(const std::string& dir, int course);
+/// "course04_T".
+[[nodiscard]] std::string RunName(int course, const std::string& test);
+
+/// One obstacle course, loaded once and shared (read-only) by all its runs.
+struct Course {
+    int number = 0;
+    std::string path;
+    core::Scene scene;
+    std::unique_ptr<sim::World> world;
+    core::MapF truth;  // on the benchmark grid
+};
+
+/// Settings common to every run of a bench or sweep.
+struct BenchSettings {
+    std::string courses_dir;
+    std::string rig_path;  // optional rig YAML
+    std::uint64_t seed = 1;
+    std::optional<double> speed_m_s;
+};
+
+/// The setup of one run (rig, sensor, grid) for a course and test.
+[[nodiscard]] SimSetup BenchSetup(const BenchSettings& settings,
+                                  int course,
+                                  const std::string& test);
+
+/// Loads the courses in parallel (scene, world, ground truth on `grid`).
+[[nodiscard]] std::vector<Course> LoadCourses(const BenchSettings& settings,
+                                              const std::vector<int>& courses,
+                                              const core::GridGeometry& grid,
+                                              int threads);
+
+/// One simulated and mapped run.
+struct MappedBenchRun {
+    int course = 0;
+    std::string test;
+    SimSetup setup;
+    std::size_t scans = 0;
+    MappedRun mapped;
+    std::string config_yaml;  // the run's effective configuration
+};
+
+/// Simulates (one thread) and maps one run on the setup's grid with the mapper's `a`.
+[[nodiscard]] MappedBenchRun SimulateAndMap(const SimSetup& setup,
+                                            const Course& course,
+                                            const core::Trajectory& poses,
+                                            int a);
+
+/// The CAS parameters a run implies (cell size, speed, scan period, a), then `overrides`
+/// (NAME=VALUE, FilterParams::Set) applied.
+[[nodiscard]] mapper::FilterParams RunFilterParams(const MappedBenchRun& run,
+                                                   const std::vector<std::string>& overrides);
+
+/// Runs the five filters and scores them against the course's truth over the paper's region.
+/// Fills `sheet` (raw, truth, filtered maps) when non-null.
+[[nodiscard]] BenchRun ScoreRun(const MappedBenchRun& run,
+                                const Course& course,
+                                const mapper::FilterParams& params,
+                                SheetMaps* sheet);
+
+/// CAS alone (for sweeps): PI and Table II shares.
+struct CasScore {
+    double pi = 0.0;
+    mapper::ClassReport classes;
+};
+[[nodiscard]] CasScore ScoreCas(const MappedBenchRun& run,
+                                const Course& course,
+                                const mapper::FilterParams& params);
+
+}  // namespace casmap::app

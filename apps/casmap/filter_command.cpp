@@ -1,0 +1,146 @@
+// casmap filter --method cas|wiener|average|median|cwm --elevation H.tiff [--certainty C.tiff]
+//               [--set NAME=VALUE]... --out OUT.tiff [--threads N]
+// Filters an elevation map (32-bit float TIFF, metres) with one of the paper's five filters and
+// writes OUT.tiff (32-bit float), OUT.png (colour, legend) and, for cas, OUT_classes.tiff
+// (PixelClass codes as floats: 0 untouched, 1 removed, 2 filled, 3 unprocessed border) and
+// OUT_classes.png. Everything is computed before the first file is written; each file is
+// written atomically. The filters are single-threaded; --threads changes nothing.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "apps/casmap/commands.hpp"
+#include "core/input_error.hpp"
+#include "io/image.hpp"
+#include "mapper/filters.hpp"
+#include "mapper/metrics.hpp"
+
+namespace casmap::app {
+namespace {
+namespace fs = std::filesystem;
+
+struct FilterOptions {
+    std::string method;
+    std::string elevation;
+    std::string certainty;
+    std::string out;
+    std::vector<std::string> sets;
+};
+
+// Maps on disk must hold finite numbers; certainty counts are >= 0.
+void CheckValues(const core::MapF& map, const std::string& file, bool non_negative) {
+    for (int i = 0; i < map.rows; ++i) {
+        for (int j = 0; j < map.cols; ++j) {
+            const float v = map.at(i, j);
+            if (!std::isfinite(v) || (non_negative && v < 0.0F)) {
+                throw MakeInputError(
+                    file, "pixel (row " + std::to_string(i) + ", col " + std::to_string(j) + ")",
+                    std::to_string(v), non_negative ? "must be finite and >= 0" : "must be finite");
+            }
+        }
+    }
+}
+
+fs::path Beside(const fs::path& out, const std::string& suffix, const std::string& ext) {
+    return out.parent_path() / (out.stem().string() + suffix + ext);
+}
+
+const std::vector<io::ClassLegendEntry>& ClassLegend() {
+    static const std::vector<io::ClassLegendEntry> legend = {
+        {"untouched", 200, 200, 200},
+        {"removed", 40, 40, 220},
+        {"filled", 220, 120, 30},
+        {"border", 90, 90, 90},
+    };
+    return legend;
+}
+
+void RunFilterCommand(const FilterOptions& opt) {
+    const mapper::FilterMethod method = mapper::ParseFilterMethod(opt.method, "--method");
+    mapper::FilterParams params;
+    for (const std::string& s : opt.sets) {
+        params.SetAssignment(s);
+    }
+    params.Validate();
+    const fs::path out(opt.out);
+    const std::string ext = out.extension().string();
+    if (ext != ".tiff" && ext != ".tif") {
+        throw MakeInputError("", "--out", opt.out, "must end in .tiff or .tif");
+    }
+    const fs::path dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
+    if (!fs::is_directory(dir)) {
+        throw MakeInputError("", "--out", opt.out, "directory " + dir.string() + " does not exist");
+    }
+    if (method == mapper::FilterMethod::kCas && opt.certainty.empty()) {
+        throw MakeInputError("", "--certainty", "", "required for --method cas");
+    }
+    const core::MapF elevation = io::ReadMapTiff(opt.elevation);
+    CheckValues(elevation, opt.elevation, false);
+    core::MapF certainty;
+    if (!opt.certainty.empty()) {
+        certainty = io::ReadMapTiff(opt.certainty);
+        if (!certainty.SameShape(elevation)) {
+            throw MakeInputError(
+                opt.certainty, "size",
+                std::to_string(certainty.rows) + "x" + std::to_string(certainty.cols),
+                "must equal the elevation map's " + std::to_string(elevation.rows) + "x" +
+                    std::to_string(elevation.cols) + " (" + opt.elevation + ")");
+        }
+        CheckValues(certainty, opt.certainty, true);
+    }
+
+    const mapper::FilterResult result = mapper::RunFilter(method, elevation, certainty, params);
+    core::Raster<std::uint8_t> unknown;
+    if (!certainty.data.empty()) {
+        unknown = core::Raster<std::uint8_t>(certainty.rows, certainty.cols, 0);
+        for (std::size_t i = 0; i < certainty.data.size(); ++i) {
+            unknown.data[i] = certainty.data[i] == 0.0F && result.elevation.data[i] == 0.0F;
+        }
+    }
+    io::PngStyle style;
+    style.title = "casmap filter --method " + opt.method;
+    style.unknown = unknown.data.empty() ? nullptr : &unknown;
+
+    io::WriteMapTiff(out, result.elevation);
+    io::WriteMapPng(Beside(out, "", ".png"), result.elevation, style);
+    if (method == mapper::FilterMethod::kCas) {
+        core::MapF codes(result.classes.rows, result.classes.cols);
+        for (std::size_t i = 0; i < codes.data.size(); ++i) {
+            codes.data[i] = static_cast<float>(result.classes.data[i]);
+        }
+        io::WriteMapTiff(Beside(out, "_classes", ".tiff"), codes);
+        io::WriteClassesPng(Beside(out, "_classes", ".png"), result.classes, ClassLegend(),
+                            "CAS classes (Eq. 7)");
+        const mapper::ClassReport r = mapper::ClassPercentages(result.classes, certainty);
+        std::printf(
+            "cas: A = %g, G = %g; of %lld processed cells: removed %.1f %%, filled %.1f %%, "
+            "untouched %.1f %% (without never-observed: %.1f / %.1f / %.1f %%)\n",
+            params.cas.EffectiveA(), params.cas.EffectiveG(), static_cast<long long>(r.all.cells),
+            r.all.removed_pct, r.all.filled_pct, r.all.untouched_pct, r.observed.removed_pct,
+            r.observed.filled_pct, r.observed.untouched_pct);
+    }
+    std::printf("wrote %s\n", out.string().c_str());
+}
+
+}  // namespace
+
+void AddFilterCommand(CLI::App& app, CommonOptions& common) {
+    auto opt = std::make_shared<FilterOptions>();
+    CLI::App* sub =
+        app.add_subcommand("filter", "Filter an elevation map: CAS (Eq. 7-10) or a 5x5 baseline");
+    sub->add_option("--method", opt->method, "cas|wiener|average|median|cwm")->required();
+    sub->add_option("--elevation", opt->elevation, "elevation map H, 32-bit float TIFF (m)")
+        ->required();
+    sub->add_option("--certainty", opt->certainty,
+                    "certainty map C, 32-bit float TIFF (counts); required for cas");
+    sub->add_option("--set", opt->sets, "filter parameter NAME=VALUE (repeatable)");
+    sub->add_option("--out", opt->out, "output OUT.tiff (also OUT.png; OUT_classes.* for cas)")
+        ->required();
+    AddThreadsOption(sub, common);
+    sub->callback([opt] { RunFilterCommand(*opt); });
+}
+
+}  // namespace casmap::app

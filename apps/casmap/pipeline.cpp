@@ -1,0 +1,163 @@
+#include "apps/casmap/pipeline.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "core/input_error.hpp"
+#include "core/lms200.hpp"
+#include "io/image.hpp"
+
+namespace casmap::app {
+
+double ScanPeriod(const std::vector<core::Scan>& scans) {
+    if (scans.size() < 2) {
+        return core::Lms200Timing::kTurnPeriodS;
+    }
+    std::vector<double> gaps;
+    gaps.reserve(scans.size() - 1);
+    for (std::size_t i = 1; i < scans.size(); ++i) {
+        const double gap = scans[i].stamp_s - scans[i - 1].stamp_s;
+        if (gap > 0.0) {
+            gaps.push_back(gap);
+        }
+    }
+    if (gaps.empty()) {
+        return core::Lms200Timing::kTurnPeriodS;
+    }
+    const auto mid = gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2);
+    std::nth_element(gaps.begin(), mid, gaps.end());
+    return *mid;
+}
+
+MappedRun MapScans(const std::vector<core::Scan>& scans,
+                   const core::Trajectory& world_T_sensor,
+                   const core::GridGeometry& grid,
+                   const MapSettings& settings) {
+    mapper::TerrainMapperConfig config;
+    config.grid = grid;
+    config.a = settings.a;
+    config.delta_l_m = settings.delta_l_m;
+    config.scan_period_s = ScanPeriod(scans);
+    mapper::TerrainMapper mapper(config);
+    for (const core::Scan& scan : scans) {
+        mapper.AddScan(scan, world_T_sensor);
+    }
+    return MappedRun{mapper.elevation(), mapper.certainty(), mapper.stats(), config};
+}
+
+core::GridGeometry GridCoveringBeams(const std::vector<core::Scan>& scans,
+                                     const core::Trajectory& world_T_sensor,
+                                     double cell_m,
+                                     const std::string& where) {
+    double x_lo = std::numeric_limits<double>::infinity();
+    double y_lo = x_lo;
+    double x_hi = -x_lo;
+    double y_hi = -x_lo;
+    for (const core::Scan& scan : scans) {
+        for (std::size_t i = 0; i < scan.beams.size(); ++i) {
+            if (scan.beams[i].status != core::BeamStatus::kOk) {
+                continue;
+            }
+            const std::optional<core::Pose> pose = world_T_sensor.PoseAt(scan.BeamTime(i));
+            if (!pose) {
+                continue;
+            }
+            const Eigen::Vector3d p =
+                mapper::BeamToWorld(*pose, scan.BeamAngle(i), scan.beams[i].range_m);
+            x_lo = std::min(x_lo, p.x());
+            x_hi = std::max(x_hi, p.x());
+            y_lo = std::min(y_lo, p.y());
+            y_hi = std::max(y_hi, p.y());
+        }
+    }
+    if (!(x_lo <= x_hi)) {
+        throw MakeInputError(where, "scans", "",
+                             "no valid beam has a pose, so there is nothing to map");
+    }
+    core::GridGeometry grid;
+    grid.cell_m = cell_m;
+    grid.x0_m = std::floor(x_lo / cell_m) * cell_m;
+    grid.y0_m = std::floor(y_lo / cell_m) * cell_m;
+    const double rows = std::floor((x_hi - grid.x0_m) / cell_m) + 1.0;
+    const double cols = std::floor((y_hi - grid.y0_m) / cell_m) + 1.0;
+    constexpr double kMaxCells = 4000.0;
+    if (rows > kMaxCells || cols > kMaxCells) {
+        throw MakeInputError(where, "scans",
+                             FormatNumber(rows) + " x " + FormatNumber(cols) + " cells",
+                             "the beams span more than 4000 x 4000 cells; give --grid");
+    }
+    grid.rows = static_cast<int>(rows);
+    grid.cols = static_cast<int>(cols);
+    return grid;
+}
+
+core::GridGeometry ParseGrid(const std::string& text, const std::string& field) {
+    std::vector<std::string> parts;
+    std::stringstream in(text);
+    for (std::string part; std::getline(in, part, ',');) {
+        parts.push_back(part);
+    }
+    const std::string rule = "expected X0,Y0,CELL_M,ROWS,COLS with CELL_M > 0, ROWS, COLS > 0";
+    if (parts.size() != 5) {
+        throw MakeInputError("", field, text, rule);
+    }
+    double v[5] = {};
+    for (std::size_t i = 0; i < 5; ++i) {
+        const char* first = parts[i].data();
+        const char* last = first + parts[i].size();
+        const auto [ptr, ec] = std::from_chars(first, last, v[i]);
+        if (ec != std::errc() || ptr != last || !std::isfinite(v[i])) {
+            throw MakeInputError("", field, text, rule);
+        }
+    }
+    if (!(v[2] > 0.0) || v[3] < 1.0 || v[4] < 1.0 || v[3] != std::floor(v[3]) ||
+        v[4] != std::floor(v[4]) || v[3] > 1e5 || v[4] > 1e5) {
+        throw MakeInputError("", field, text, rule);
+    }
+    return core::GridGeometry{v[0], v[1], v[2], static_cast<int>(v[3]), static_cast<int>(v[4])};
+}
+
+core::Raster<std::uint8_t> UnknownMask(const core::MapF& certainty) {
+    core::Raster<std::uint8_t> mask(certainty.rows, certainty.cols, 0);
+    for (std::size_t i = 0; i < certainty.data.size(); ++i) {
+        mask.data[i] = certainty.data[i] == 0.0F ? 1 : 0;
+    }
+    return mask;
+}
+
+void WriteMapFiles(const std::filesystem::path& dir,
+                   const std::string& stem,
+                   const core::MapF& map,
+                   const std::string& title,
+                   const std::string& unit,
+                   const core::Raster<std::uint8_t>* unknown) {
+    io::WriteMapTiff(dir / (stem + ".tiff"), map);
+    io::PngStyle style;
+    style.title = title;
+    style.unit = unit;
+    style.unknown = unknown;
+    io::WriteMapPng(dir / (stem + ".png"), map, style);
+}
+
+std::string FormatNumber(double value) {
+    if (std::isnan(value)) {
+        return ".nan";
+    }
+    if (std::isinf(value)) {
+        return value > 0 ? ".inf" : "-.inf";
+    }
+    char buffer[64];
+    const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
+    return ec == std::errc() ? std::string(buffer, ptr) : std::string("0");
+}
+
+std::string GridYaml(const core::GridGeometry& grid) {
+    return "{origin_x_m: " + FormatNumber(grid.x0_m) + ", origin_y_m: " + FormatNumber(grid.y0_m) +
+           ", cell_m: " + FormatNumber(grid.cell_m) + ", rows: " + std::to_string(grid.rows) +
+           ", cols: " + std::to_string(grid.cols) + "}";
+}
+
+}  // namespace casmap::app

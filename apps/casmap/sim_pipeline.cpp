@@ -1,0 +1,238 @@
+#include "apps/casmap/sim_pipeline.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+#include "apps/casmap/pipeline.hpp"
+#include "core/input_error.hpp"
+#include "core/parallel.hpp"
+#include "io/rig_config.hpp"
+#include "sensor_models/lms200_model.hpp"
+#include "sim/ground_truth.hpp"
+#include "sim/simulator.hpp"
+
+namespace casmap::app {
+namespace {
+
+double ParseDouble(const std::string& text, const std::string& field, const std::string& value) {
+    double v = 0.0;
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v)) {
+        throw MakeInputError("", field, value, "must be a finite number");
+    }
+    return v;
+}
+
+Eigen::Vector3d ParseVector3(const std::string& text, const std::string& field) {
+    std::vector<std::string> parts;
+    std::stringstream in(text);
+    for (std::string part; std::getline(in, part, ',');) {
+        parts.push_back(part);
+    }
+    if (parts.size() != 3) {
+        throw MakeInputError("", field, text, "must be three numbers X,Y,Z");
+    }
+    return {ParseDouble(parts[0], field, text), ParseDouble(parts[1], field, text),
+            ParseDouble(parts[2], field, text)};
+}
+
+/// --pose-error NAME=VALUE: the fields of rig::PoseErrorConfig (vectors as X,Y,Z).
+void SetPoseError(rig::PoseErrorConfig& cfg, const std::string& assignment) {
+    const std::size_t eq = assignment.find('=');
+    const std::string field = "--pose-error";
+    if (eq == std::string::npos) {
+        throw MakeInputError("", field, assignment, "expected NAME=VALUE");
+    }
+    const std::string name = assignment.substr(0, eq);
+    const std::string value = assignment.substr(eq + 1);
+    const std::string where = field + " " + name;
+    if (name == "position_bias_m") {
+        cfg.position_bias_m = ParseVector3(value, where);
+    } else if (name == "attitude_bias_deg") {
+        cfg.attitude_bias_deg = ParseVector3(value, where);
+    } else if (name == "position_random_walk_m_per_sqrt_s") {
+        cfg.position_random_walk_m_per_sqrt_s = ParseDouble(value, where, value);
+    } else if (name == "attitude_random_walk_deg_per_sqrt_s") {
+        cfg.attitude_random_walk_deg_per_sqrt_s = ParseDouble(value, where, value);
+    } else if (name == "position_jitter_m") {
+        cfg.position_jitter_m = ParseDouble(value, where, value);
+    } else if (name == "attitude_jitter_deg") {
+        cfg.attitude_jitter_deg = ParseDouble(value, where, value);
+    } else if (name == "seed") {
+        std::uint64_t seed = 0;
+        const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), seed);
+        if (ec != std::errc() || ptr != value.data() + value.size()) {
+            throw MakeInputError("", where, value, "must be a non-negative integer");
+        }
+        cfg.seed = seed;
+    } else {
+        throw MakeInputError("", field, name,
+                             "allowed: position_bias_m, attitude_bias_deg, "
+                             "position_random_walk_m_per_sqrt_s, "
+                             "attitude_random_walk_deg_per_sqrt_s, position_jitter_m, "
+                             "attitude_jitter_deg, seed");
+    }
+    cfg.enabled = true;
+}
+
+std::string SensorYaml(const sensor_models::Lms200Config& c) {
+    const char* mode = c.format.mode == core::RangeMode::k8m    ? "8m"
+                       : c.format.mode == core::RangeMode::k16m ? "16m"
+                                                                : "32m";
+    return std::string("sensor: {model: lms200, angular_resolution_deg: ") +
+           FormatNumber(c.angular_resolution_deg) +
+           ", field_of_view_deg: " + FormatNumber(c.field_of_view_deg) + ", range_mode: " + mode +
+           ", range_units: " + (c.format.units == core::RangeUnits::kMillimetre ? "mm" : "cm") +
+           ", ideal: " + (c.ideal ? "true" : "false") +
+           ", defaults: sensor_models/lms200_config.hpp}\n";
+}
+
+}  // namespace
+
+rig::CourseConfig PaperCourse() {
+    rig::CourseConfig course;
+    course.start_x_m = 1.0;
+    course.end_x_m = 6.0;
+    course.lateral_offset_m = 0.0;
+    course.width_m = 2.0;
+    return course;
+}
+
+SimSetup ResolveSimSetup(const SimFlags& flags) {
+    SimSetup s;
+    s.scene_path = flags.scene_path;
+    s.motion_name = flags.motion;
+    s.seed = flags.seed;
+    s.vehicle = flags.motion == "vehicle";
+    if (!s.vehicle) {
+        try {
+            s.motion = rig::ParseMotion(flags.motion, "--motion");
+        } catch (const InputError&) {
+            throw MakeInputError("", "--motion", flags.motion, "allowed: T, TR, TP, TRP, vehicle");
+        }
+    }
+    s.table.course = PaperCourse();
+    s.pose_error.seed = flags.seed;
+    if (!flags.rig_path.empty()) {
+        // The rig file decides everything it can set, the course region and the pose-error
+        // seed included.
+        const io::RigConfig rig = io::LoadRigConfig(flags.rig_path);
+        s.rig_path = flags.rig_path;
+        s.table = rig.table;
+        s.vehicle_config = rig.vehicle;
+        s.pose_error = rig.pose_error;
+    }
+    if (flags.speed_m_s) {
+        const double v = *flags.speed_m_s;
+        const double limit =
+            s.vehicle ? rig::VehicleLimits::kMaxSpeedMS : rig::TableLimits::kMaxSpeedMS;
+        if (!(v > 0.0 && v <= limit)) {
+            throw MakeInputError("", "--speed", FormatNumber(v),
+                                 "allowed: > 0 and <= " + FormatNumber(limit) + " m/s (the " +
+                                     (s.vehicle ? "vehicle" : "table") + "'s limit)");
+        }
+        s.table.speed_m_s = v;
+        s.vehicle_config.speed_m_s = v;
+    }
+    for (const std::string& a : flags.pose_error) {
+        SetPoseError(s.pose_error, a);
+    }
+    s.pose_error.Validate("--pose-error");
+    if (s.vehicle) {
+        s.vehicle_config.Validate(s.rig_path.empty() ? "vehicle" : s.rig_path);
+    } else {
+        s.table.Validate(s.rig_path.empty() ? "table" : s.rig_path);
+    }
+    s.lms.Validate();
+    const rig::CourseConfig& c = s.table.course;
+    s.grid.cell_m = 0.025;
+    s.grid.x0_m = c.start_x_m;
+    s.grid.y0_m = c.lateral_offset_m - 0.5 * c.width_m;
+    s.grid.rows = static_cast<int>(std::lround((c.end_x_m - c.start_x_m) / s.grid.cell_m));
+    s.grid.cols = static_cast<int>(std::lround(c.width_m / s.grid.cell_m));
+    s.grid.Validate();
+    return s;
+}
+
+std::string EffectiveConfigYaml(const SimSetup& s) {
+    std::string y = "# casmap simulate: the effective configuration of this run\n";
+    y += "scene: " + s.scene_path + "\n";
+    y += "motion: " + s.motion_name + "\n";
+    y += "seed: " + std::to_string(s.seed) + "\n";
+    y += "grid: " + GridYaml(s.grid) + "\n";
+    y += "rig_file: " + (s.rig_path.empty() ? std::string("null") : s.rig_path) + "\n";
+    y += SensorYaml(s.lms);
+    y += "# the rig, every key, in the format of config/rig_table.yaml (table: T/TR/TP/TRP; "
+         "vehicle)\n";
+    y += io::RigConfigToYaml(io::RigConfig{s.table, s.vehicle_config, s.pose_error});
+    return y;
+}
+
+core::Trajectory RigTrajectory(const SimSetup& setup, const core::Scene& scene) {
+    if (setup.vehicle) {
+        return rig::SimulateVehicle(scene, setup.vehicle_config);
+    }
+    return rig::SimulateTable(setup.table, setup.motion);
+}
+
+namespace {
+std::size_t ScanCountFor(const sensor_models::Lms200Model& model,
+                         const core::Trajectory& trajectory) {
+    if (trajectory.size() < 2) {
+        return 0;
+    }
+    const double span = trajectory.EndTime() - trajectory.StartTime() -
+                        model.BeamTimeOffsetS(model.BeamCount() - 1);
+    if (span < 0.0) {
+        return 0;
+    }
+    return static_cast<std::size_t>(std::floor(span / model.ScanPeriodS())) + 1;
+}
+}  // namespace
+
+std::size_t ScanCount(const SimSetup& setup, const core::Trajectory& trajectory) {
+    return ScanCountFor(sensor_models::Lms200Model(setup.lms, setup.seed), trajectory);
+}
+
+SimulatedRun SimulateRun(const SimSetup& setup,
+                         const core::Scene& scene,
+                         const sim::World& world,
+                         const core::Trajectory& true_poses,
+                         int threads,
+                         core::Progress* progress,
+                         bool truth) {
+    const sensor_models::Lms200Model model(setup.lms, setup.seed);
+    const std::size_t count = ScanCountFor(model, true_poses);
+    const double start = true_poses.empty() ? 0.0 : true_poses.StartTime();
+    const double period = model.ScanPeriodS();
+    std::vector<sim::ScanResult> results(count);
+    core::ParallelFor(count, threads, [&](std::size_t k) {
+        results[k] =
+            sim::CastScan(world, model, true_poses, start + static_cast<double>(k) * period, k);
+        if (progress != nullptr) {
+            progress->Advance();
+        }
+    });
+    SimulatedRun out;
+    out.true_poses = true_poses;
+    io::RunData& run = out.run;
+    run.scans.reserve(count);
+    run.truth.reserve(count);
+    for (sim::ScanResult& r : results) {
+        run.scans.push_back(std::move(r.scan));
+        run.truth.push_back(std::move(r.truth));
+    }
+    run.poses =
+        setup.pose_error.enabled ? rig::ApplyPoseError(true_poses, setup.pose_error) : true_poses;
+    run.format = setup.lms.format;
+    run.seed = setup.seed;
+    run.config_yaml = EffectiveConfigYaml(setup);
+    run.maps.grid = setup.grid;
+    if (truth) {
+        run.maps.truth_m = sim::GroundTruthElevation(scene, setup.grid, threads);
+    }
+    return out;
+}
+
+}  // namespace casmap::app

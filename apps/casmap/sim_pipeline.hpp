@@ -1,0 +1,82 @@
+#pragma once
+
+// Simulated runs for `casmap simulate`, `bench` and `sweep` (simulator builds only): scene +
+// rig + motion + seed -> scans with truth labels, poses, the ground-truth map and the
+// effective configuration, as io::RunData.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "core/grid.hpp"
+#include "core/progress.hpp"
+#include "core/scene.hpp"
+#include "io/run_file.hpp"
+#include "rig/pose_error.hpp"
+#include "rig/table.hpp"
+#include "rig/vehicle.hpp"
+#include "sensor_models/lms200_config.hpp"
+#include "sim/world.hpp"
+
+namespace casmap::app {
+
+/// The scene layout of scenes/courses/*.yaml: the paper's N = 200 x M = 80 cells of 25 mm,
+/// x in [1, 6) m, y in [-1, 1) m.
+[[nodiscard]] rig::CourseConfig PaperCourse();
+
+/// Everything a simulated run depends on, resolved from flags and files.
+struct SimSetup {
+    std::string scene_path;
+    std::string motion_name = "T";  // T, TR, TP, TRP or vehicle
+    bool vehicle = false;
+    rig::Motion motion = rig::Motion::kT;
+    rig::TableConfig table;
+    rig::VehicleConfig vehicle_config;
+    sensor_models::Lms200Config lms;
+    rig::PoseErrorConfig pose_error;
+    std::uint64_t seed = 1;
+    core::GridGeometry grid;  // the map grid: the course region (truth and maps)
+    std::string rig_path;
+};
+
+/// Flags of `casmap simulate` (and the per-run settings of bench and sweep).
+struct SimFlags {
+    std::string scene_path;
+    std::string motion = "T";
+    std::optional<double> speed_m_s;
+    std::uint64_t seed = 1;
+    std::string rig_path;                 // optional rig YAML
+    std::vector<std::string> pose_error;  // NAME=VALUE settings of rig::PoseErrorConfig
+};
+
+/// Resolves flags and the rig file into a validated setup; InputError naming the flag, file
+/// and field otherwise (unknown motion, speed beyond the rig's limit, ...).
+[[nodiscard]] SimSetup ResolveSimSetup(const SimFlags& flags);
+
+/// The effective configuration as YAML text (written into the run file and beside outputs).
+/// Independent of the thread count, so runs stay byte-identical.
+[[nodiscard]] std::string EffectiveConfigYaml(const SimSetup& setup);
+
+/// The sensor trajectory of the rig (true poses).
+[[nodiscard]] core::Trajectory RigTrajectory(const SimSetup& setup, const core::Scene& scene);
+
+struct SimulatedRun {
+    io::RunData run;              // poses = what the mapper sees (with pose error, if any)
+    core::Trajectory true_poses;  // what the simulator used
+};
+
+/// Simulates every full scan `true_poses` covers (scan k at StartTime + k * scan period, scan
+/// index k), plus the ground truth on setup.grid unless `truth` is false. `progress` (may be
+/// null) advances once per scan. Identical output at any thread count.
+[[nodiscard]] SimulatedRun SimulateRun(const SimSetup& setup,
+                                       const core::Scene& scene,
+                                       const sim::World& world,
+                                       const core::Trajectory& true_poses,
+                                       int threads,
+                                       core::Progress* progress,
+                                       bool truth = true);
+
+/// Number of scans SimulateRun will produce (for progress bars).
+[[nodiscard]] std::size_t ScanCount(const SimSetup& setup, const core::Trajectory& trajectory);
+
+}  // namespace casmap::app

@@ -1,0 +1,189 @@
+// `casmap map`: runs the built binary on run files made here with exact geometry (a sensor
+// moving along x over a floor at z = 0 with a raised block), then checks the maps it wrote.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "core/pose.hpp"
+#include "io/image.hpp"
+#include "io/run_file.hpp"
+
+namespace casmap {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr double kBlockTopM = 0.2;  // block over x in [1.0, 1.3], y in [-0.2, 0.2]
+
+struct Result {
+    int code = -1;
+    std::string output;
+};
+
+Result Casmap(const std::string& args) {
+    const std::string cmd = std::string(CASMAP_EXE) + " " + args + " 2>&1";
+    Result r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    char buffer[4096];
+    while (pipe != nullptr && fgets(buffer, sizeof(buffer), pipe) != nullptr) {
+        r.output += buffer;
+    }
+    const int status = pipe != nullptr ? pclose(pipe) : -1;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+fs::path FreshDir(const std::string& name) {
+    const fs::path dir = fs::path(testing::TempDir()) / ("casmap_map_cmd_" + name);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+/// Exact range along a ray to the floor (z = 0) or the block's top, whichever is hit first;
+/// NaN if the ray goes up. Block sides are ignored (the test only checks floor and top cells).
+double RangeTo(const Eigen::Vector3d& o, const Eigen::Vector3d& d) {
+    if (d.z() >= -1e-9) {
+        return std::nan("");
+    }
+    const double t_top = (kBlockTopM - o.z()) / d.z();
+    const Eigen::Vector3d top = o + t_top * d;
+    if (top.x() >= 1.0 && top.x() <= 1.3 && std::abs(top.y()) <= 0.2) {
+        return t_top;
+    }
+    return -o.z() / d.z();
+}
+
+/// 1.5 s at 1 m/s, sensor 0.5 m high (beam spacing on the floor below the 25 mm cell) pitched 40
+/// deg down, 75 scans/s, 181 beams.
+io::RunData FlatFloorRun(bool with_truth) {
+    io::RunData run;
+    run.format = core::Lms200Format{};
+    run.config_yaml = "test: flat floor with a block\n";
+    std::vector<core::TimedPose> poses;
+    for (int i = 0; i <= 1600; ++i) {  // 1 kHz physics-rate poses
+        const double t = i * 0.001;
+        poses.push_back({t, core::PoseFromXyzRpy({-0.5 + t, 0.0, 0.5}, {0.0, 40 * kDeg, 0.0})});
+    }
+    run.poses = core::Trajectory(poses);
+    for (int k = 0; k < 112; ++k) {
+        core::Scan s;
+        s.stamp_s = 0.01 + k / 75.0;
+        s.start_angle_rad = -90 * kDeg;
+        s.angle_step_rad = 1 * kDeg;
+        s.beam_period_s = core::Lms200Timing::kBeamPeriodS;
+        core::ScanTruth truth;
+        for (std::size_t i = 0; i < 181; ++i) {
+            const core::Pose pose = *run.poses.PoseAt(s.BeamTime(i));
+            const double a = s.BeamAngle(i);
+            const Eigen::Vector3d d = pose.rotation * Eigen::Vector3d(std::cos(a), std::sin(a), 0);
+            const double r = RangeTo(pose.translation, d);
+            core::Beam b;
+            if (std::isfinite(r) && r < 8.0) {
+                b.status = core::BeamStatus::kOk;
+                b.range_m = static_cast<float>(r);
+                b.raw = run.format->EncodeRange(r);
+            } else {
+                b.status = core::BeamStatus::kNoReturn;
+                b.raw = run.format->CodeFor(b.status);
+            }
+            s.beams.push_back(b);
+            truth.labels.push_back(b.status == core::BeamStatus::kOk ? core::BeamLabel::kValid
+                                                                     : core::BeamLabel::kNoTarget);
+        }
+        run.scans.push_back(s);
+        if (with_truth) {
+            run.truth.push_back(truth);
+        }
+    }
+    return run;
+}
+
+TEST(MapCommand, FlatFloorAndBlockAppearInMapsAndRunFile) {
+    const fs::path dir = FreshDir("flat");
+    const io::RunData written = FlatFloorRun(true);
+    io::RunData with_grid = written;
+    with_grid.maps.grid = core::GridGeometry{0.0, -1.0, 0.025, 60, 80};  // x 0..1.5, y -1..1
+    io::WriteRunFile(dir / "run.h5", with_grid);
+
+    const Result r =
+        Casmap("map " + (dir / "run.h5").string() + " --out " + (dir / "maps").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const char* f : {"elevation.tiff", "elevation.png", "certainty.tiff", "certainty.png",
+                          "map.yaml", "run_config.yaml"}) {
+        EXPECT_TRUE(fs::exists(dir / "maps" / f)) << f;
+    }
+    const core::MapF h = io::ReadMapTiff(dir / "maps" / "elevation.tiff");
+    const core::MapF c = io::ReadMapTiff(dir / "maps" / "certainty.tiff");
+    ASSERT_EQ(h.rows, 60);
+    ASSERT_EQ(h.cols, 80);
+    // Floor cells (rows 6..30 = x 0.15..0.75, cols 24..56 = y -0.4..0.4) are seen and flat.
+    for (int row = 6; row < 30; ++row) {
+        for (int col = 24; col < 56; ++col) {
+            EXPECT_GT(c.at(row, col), 0.0F) << row << "," << col;
+            EXPECT_NEAR(h.at(row, col), 0.0F, 1e-3) << row << "," << col;
+        }
+    }
+    // Block top: x in [1.0, 1.3] -> rows 40..51, y in [-0.2, 0.2] -> cols 32..47 (inner cells).
+    int top_cells = 0;
+    for (int row = 42; row < 50; ++row) {
+        for (int col = 34; col < 46; ++col) {
+            if (c.at(row, col) > 0.0F) {
+                ++top_cells;
+                EXPECT_NEAR(h.at(row, col), kBlockTopM, 1e-3) << row << "," << col;
+            }
+        }
+    }
+    EXPECT_GT(top_cells, 60);
+
+    const io::RunData back = io::ReadRunFile(dir / "run.h5");
+    ASSERT_TRUE(back.maps.elevation_m.has_value());
+    ASSERT_TRUE(back.maps.certainty.has_value());
+    EXPECT_EQ(back.maps.elevation_m->data, h.data);
+    EXPECT_EQ(back.maps.certainty->data, c.data);
+    EXPECT_EQ(back.scans.size(), written.scans.size());
+    EXPECT_EQ(back.truth.size(), written.truth.size());
+}
+
+TEST(MapCommand, RecordedRunWithoutLabelsOrGridGetsTheBeamsExtent) {
+    const fs::path dir = FreshDir("recorded");
+    io::WriteRunFile(dir / "rec.h5", FlatFloorRun(false));
+    const Result r = Casmap("map " + (dir / "rec.h5").string() + " --threads 1");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "rec_maps" / "elevation.tiff"));
+    const io::RunMaps maps = io::ReadRunMaps(dir / "rec.h5");
+    ASSERT_TRUE(maps.grid.has_value());
+    EXPECT_EQ(std::fmod(std::abs(maps.grid->x0_m) + 1e-9, 0.025) < 1e-6, true);
+    EXPECT_GT(maps.grid->rows, 40);
+    EXPECT_FALSE(maps.truth_m.has_value());
+    // Every cell with certainty holds the floor or the block top.
+    for (std::size_t i = 0; i < maps.elevation_m->data.size(); ++i) {
+        if (maps.certainty->data[i] > 0.0F) {
+            const float z = maps.elevation_m->data[i];
+            EXPECT_TRUE(std::abs(z) < 2e-3 || std::abs(z - kBlockTopM) < 2e-3) << z;
+        }
+    }
+}
+
+TEST(MapCommand, BadInputExitsTwoNamingIt) {
+    const fs::path dir = FreshDir("bad");
+    Result r = Casmap("map " + (dir / "none.h5").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("none.h5"), std::string::npos) << r.output;
+
+    io::WriteRunFile(dir / "run.h5", FlatFloorRun(false));
+    r = Casmap("map " + (dir / "run.h5").string() + " --grid 0,0,0,10,10");
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("--grid"), std::string::npos) << r.output;
+
+    r = Casmap("map " + (dir / "run.h5").string() + " --out /proc/casmap_cannot");
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("/proc/casmap_cannot"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace casmap
