@@ -17,8 +17,7 @@ void AddTruthCommand(CLI::App& app, CommonOptions& common);
 void AddScanCommand(CLI::App& app, CommonOptions& common);
 void AddMixedPixelsCommand(CLI::App& app, CommonOptions& common);
 #endif
-void AddFilterCommand(CLI::App& app, CommonOptions& common);
-void AddDemoCommand(CLI::App& app, CommonOptions& common);
+void AddRecordCommand(CLI::App& app, CommonOptions& common);
 // END COMMAND DECLARATIONS
 }  // namespace casmap::app
 
@@ -35,8 +34,7 @@ int main(int argc, char** argv) {
     AddScanCommand(app, common);
     AddMixedPixelsCommand(app, common);
 #endif
-    AddFilterCommand(app, common);
-    AddDemoCommand(app, common);
+    AddRecordCommand(app, common);
     // END COMMAND REGISTRATION
     try {
         app.parse(argc, argv);

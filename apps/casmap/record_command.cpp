@@ -1,0 +1,210 @@
+// casmap record --device PATH [--baud N] [--scans N | --duration S] --out RUN.h5
+//                [--variant ANGLE,RES_DEG] [--poses FILE] [--timeout S]
+// Records scans from an LMS 200 (a real one, or `casmap serve`) into a run file. The driver
+// starts at 9600 baud and switches to --baud. Stops after --scans or --duration, on
+// SIGINT/SIGTERM, or (with an error) after --timeout seconds without a scan. Prints one JSON
+// line: {"scans", "bytes", "crc_errors", "resyncs", "reconnects", "scans_per_second"}.
+// Scans are stamped on the system clock (docs/drivers.md); --poses adds a pose file in that
+// clock (docs/pose-file.md), read when recording ends, as the run's /poses so `casmap map`
+// can map the run.
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "apps/casmap/commands.hpp"
+#include "core/input_error.hpp"
+#include "drivers/lms200_driver.hpp"
+#include "drivers/pose_file.hpp"
+#include "io/run_file.hpp"
+
+namespace casmap::app {
+namespace {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+std::atomic<bool> g_record_stop{false};
+
+extern "C" void OnRecordSignal(int /*signal*/) { g_record_stop = true; }
+
+struct RecordSignals {
+    RecordSignals() {
+        g_record_stop = false;
+        std::signal(SIGINT, OnRecordSignal);
+        std::signal(SIGTERM, OnRecordSignal);
+    }
+    ~RecordSignals() {
+        std::signal(SIGINT, SIG_DFL);
+        std::signal(SIGTERM, SIG_DFL);
+    }
+    RecordSignals(const RecordSignals&) = delete;
+    RecordSignals& operator=(const RecordSignals&) = delete;
+};
+
+struct RecordOptions {
+    std::string device;
+    int baud = 38400;
+    std::size_t scans = 0;
+    double duration_s = 0.0;
+    std::string out;
+    std::string variant;
+    std::string poses;
+    double timeout_s = 10.0;
+};
+
+/// "180,1" / "180,0.5" / "100,0.25" (degrees) -> Variant; InputError otherwise.
+drivers::Variant ParseVariant(const std::string& text) {
+    const std::string rule = "ANGLE,RES_DEG: 180,1 180,0.5 100,1 100,0.5 or 100,0.25";
+    const std::size_t comma = text.find(',');
+    try {
+        if (comma == std::string::npos) {
+            throw std::invalid_argument(text);
+        }
+        std::size_t used = 0;
+        const int angle = std::stoi(text.substr(0, comma), &used);
+        const std::string res_text = text.substr(comma + 1);
+        const double res = std::stod(res_text, &used);
+        if (used != res_text.size()) {
+            throw std::invalid_argument(text);
+        }
+        const drivers::Variant v{static_cast<std::uint16_t>(angle),
+                                 static_cast<std::uint16_t>(std::lround(res * 100.0))};
+        if (v.IsValid() && std::abs(res * 100.0 - v.resolution_cdeg) < 1e-6) {
+            return v;
+        }
+    } catch (const std::logic_error&) {
+        // falls through to the error below
+    }
+    throw MakeInputError("command line", "--variant", text, rule);
+}
+
+void CheckOutput(const std::string& out) {
+    const fs::path path(out);
+    const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+    if (path.filename().empty() || !fs::is_directory(dir)) {
+        throw MakeInputError(out, "--out", out, "directory " + dir.string() + " does not exist");
+    }
+}
+
+std::string ConfigYaml(const RecordOptions& opt, const drivers::Lms200Driver& driver) {
+    const drivers::DeviceInfo& d = driver.info();
+    std::string y = "# casmap record: how this run was recorded\n";
+    y += "device: \"" + opt.device + "\"\n";
+    y += "baud: " + std::to_string(d.baud) + "\n";
+    y += "scanner:\n  type: \"" + d.type + "\"\n";
+    y += "  variant: {angle_deg: " + std::to_string(d.variant.angle_deg) +
+         ", resolution_cdeg: " + std::to_string(d.variant.resolution_cdeg) + "}\n";
+    y += "  measuring_mode: " + std::to_string(d.config.measuring_mode()) + "\n";
+    y += "  units: " + std::string(d.config.units() == 1 ? "mm" : "cm") + "\n";
+    y += "stamps: \"system clock, s since 1970; beam 0 = arrival - transmission - sweep\"\n";
+    y += "poses: " + (opt.poses.empty() ? std::string("null") : "\"" + opt.poses + "\"") + "\n";
+    return y;
+}
+
+void RunRecord(const RecordOptions& opt) {
+    CheckOutput(opt.out);
+    if (!(opt.timeout_s > 0.0)) {
+        throw MakeInputError("command line", "--timeout", std::to_string(opt.timeout_s), "> 0");
+    }
+    if (opt.duration_s < 0.0) {
+        throw MakeInputError("command line", "--duration", std::to_string(opt.duration_s), ">= 0");
+    }
+    io::RunData run;
+    drivers::DriverConfig dc;
+    dc.device = opt.device;
+    dc.baud = opt.baud;
+    if (!opt.variant.empty()) {
+        dc.variant = ParseVariant(opt.variant);
+    }
+    drivers::Lms200Driver driver(dc);
+    const RecordSignals signals;
+    driver.Connect();
+    const Clock::time_point start = Clock::now();
+    Clock::time_point last_scan = start;
+    Clock::time_point first_arrival;
+    Clock::time_point last_arrival;
+    bool timed_out = false;
+    while (!g_record_stop) {
+        if (opt.scans > 0 && run.scans.size() >= opt.scans) {
+            break;
+        }
+        const Clock::time_point now = Clock::now();
+        if (opt.duration_s > 0.0 &&
+            std::chrono::duration<double>(now - start).count() >= opt.duration_s) {
+            break;
+        }
+        if (std::chrono::duration<double>(now - last_scan).count() >= opt.timeout_s) {
+            timed_out = true;
+            break;
+        }
+        std::optional<core::Scan> scan = driver.NextScan(0.2);
+        if (!scan) {
+            continue;
+        }
+        last_scan = Clock::now();
+        if (run.scans.empty()) {
+            first_arrival = last_scan;
+        }
+        last_arrival = last_scan;
+        run.scans.push_back(std::move(*scan));
+    }
+    driver.Close();
+    const drivers::DriverCounters c = driver.counters();
+    const double span_s = std::chrono::duration<double>(last_arrival - first_arrival).count();
+    const double rate = run.scans.size() >= 2 && span_s > 0.0
+                            ? static_cast<double>(run.scans.size() - 1) / span_s
+                            : 0.0;
+    if (!run.scans.empty()) {
+        if (!opt.poses.empty()) {  // read last: `casmap serve --poses-out` writes it on demand
+            run.poses = drivers::ReadPoseFile(opt.poses);
+        }
+        run.format = driver.info().format;
+        run.config_yaml = ConfigYaml(opt, driver);
+        io::WriteRunFile(opt.out, run);
+    }
+    std::printf(
+        "{\"scans\": %zu, \"bytes\": %llu, \"crc_errors\": %llu, \"resyncs\": %llu, "
+        "\"reconnects\": %llu, \"scans_per_second\": %.3f}\n",
+        run.scans.size(), static_cast<unsigned long long>(c.bytes),
+        static_cast<unsigned long long>(c.crc_errors), static_cast<unsigned long long>(c.resyncs),
+        static_cast<unsigned long long>(c.reconnects), rate);
+    std::fflush(stdout);
+    if (timed_out) {
+        char seconds[32];
+        std::snprintf(seconds, sizeof(seconds), "%g", opt.timeout_s);
+        throw std::runtime_error(opt.device + ": no scan for " + seconds + " s; " +
+                                 (run.scans.empty()
+                                      ? std::string("nothing written")
+                                      : "wrote the " + std::to_string(run.scans.size()) +
+                                            " scans received to " + opt.out));
+    }
+}
+
+}  // namespace
+
+void AddRecordCommand(CLI::App& app, CommonOptions& common) {
+    auto opt = std::make_shared<RecordOptions>();
+    CLI::App* sub =
+        app.add_subcommand("record", "Record scans from an LMS 200 on a serial line to a run file");
+    sub->add_option("--device", opt->device, "serial device (or the link of casmap serve)")
+        ->required();
+    sub->add_option("--baud", opt->baud, "rate to switch to (9600, 19200, 38400, 500000)")
+        ->capture_default_str();
+    CLI::Option* scans = sub->add_option("--scans", opt->scans, "stop after N scans");
+    CLI::Option* duration = sub->add_option("--duration", opt->duration_s, "stop after S seconds");
+    scans->excludes(duration);
+    sub->add_option("--out", opt->out, "run file to write (HDF5)")->required();
+    sub->add_option("--variant", opt->variant, "set the variant ANGLE,RES_DEG (e.g. 180,0.5)");
+    sub->add_option("--poses", opt->poses, "pose file (docs/pose-file.md) stored as /poses");
+    sub->add_option("--timeout", opt->timeout_s, "give up after S seconds without a scan")
+        ->capture_default_str();
+    AddThreadsOption(sub, common);
+    sub->callback([opt] { RunRecord(*opt); });
+}
+
+}  // namespace casmap::app
