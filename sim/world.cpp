@@ -273,11 +273,13 @@ struct Packet<16> {
 }  // namespace
 
 struct World::Impl {
-    ErrorSink errors;  // must outlive the device
+    // Members are destroyed bottom-up: the scene goes first, then the device, and only then
+    // the cylinders it points to and the error sink its callback writes to.
+    ErrorSink errors;
+    std::vector<std::unique_ptr<Cylinder>> cylinders;  // user data, stable addresses
+    std::vector<float> reflectivity;                   // per geometry id = object index
     DevicePtr device{nullptr, &rtcReleaseDevice};
     ScenePtr scene{nullptr, &rtcReleaseScene};
-    std::vector<float> reflectivity;                   // per geometry id = object index
-    std::vector<std::unique_ptr<Cylinder>> cylinders;  // user data, stable addresses
 
     void AddTriangles(const TriangleSoup& soup, unsigned int id, const std::string& name);
     void AddCylinder(const core::CylinderShape& shape,
@@ -328,10 +330,11 @@ void World::Impl::AddCylinder(const core::CylinderShape& shape,
     cyl->center_world = pose.translation;
     cyl->radius_m = shape.radius_m;
     cyl->half_height_m = 0.5 * shape.height_m;
+    cylinders.push_back(std::move(cyl));  // owned before Embree holds a pointer to it
     RTCGeometry geom = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_USER);
     errors.Check("creating cylinder " + name);
     rtcSetGeometryUserPrimitiveCount(geom, 1);
-    rtcSetGeometryUserData(geom, cyl.get());
+    rtcSetGeometryUserData(geom, cylinders.back().get());
     rtcSetGeometryBoundsFunction(geom, &CylinderBounds, nullptr);
     rtcSetGeometryIntersectFunction(geom, &CylinderIntersect);
     rtcSetGeometryOccludedFunction(geom, &CylinderOccluded);
@@ -339,7 +342,6 @@ void World::Impl::AddCylinder(const core::CylinderShape& shape,
     rtcAttachGeometryByID(scene.get(), geom, id);
     rtcReleaseGeometry(geom);
     errors.Check("attaching cylinder " + name);
-    cylinders.push_back(std::move(cyl));
 }
 
 Hit World::Impl::MakeHit(unsigned int geom_id,
