@@ -406,16 +406,17 @@ void Lms200Model::PulseSubrays(std::uint64_t scan_index,
     PulseSubrays(scan_index, beam, core::Pose{}, out);
 }
 
-void Lms200Model::PulseSubrays(std::uint64_t scan_index,
-                               std::size_t beam,
-                               const core::Pose& frame_T_sensor,
-                               std::span<Subray> out) const {
+PulseFrame Lms200Model::PulseBasis(std::uint64_t scan_index,
+                                   std::size_t beam,
+                                   const core::Pose& frame_T_sensor) const {
     const Eigen::Matrix3d rot = frame_T_sensor.rotation.toRotationMatrix();
     const double cb = beam_cos_[beam];
     const double sb = beam_sin_[beam];
-    const Eigen::Vector3d axis = rot * Eigen::Vector3d(cb, sb, 0.0);
-    Eigen::Vector3d u1 = rot * Eigen::Vector3d(-sb, cb, 0.0);  // in the scan plane
-    Eigen::Vector3d u2 = rot.col(2);                           // across it
+    PulseFrame f;
+    f.origin = frame_T_sensor.translation;
+    f.axis = rot * Eigen::Vector3d(cb, sb, 0.0);
+    f.u1 = rot * Eigen::Vector3d(-sb, cb, 0.0);  // in the scan plane
+    f.u2 = rot.col(2);                           // across it
     if (config_.rotate_pattern_per_pulse && subray_count_ > 1) {
         // One rotation of the whole pattern per pulse: rotate the transverse basis instead.
         // A uniform angle as a random point of the unit disc, normalised (no trigonometry).
@@ -433,16 +434,24 @@ void Lms200Model::PulseSubrays(std::uint64_t scan_index,
                 break;
             }
         }
-        const Eigen::Vector3d v1 = c * u1 + s * u2;
-        u2 = c * u2 - s * u1;
-        u1 = v1;
+        const Eigen::Vector3d v1 = c * f.u1 + s * f.u2;
+        f.u2 = c * f.u2 - s * f.u1;
+        f.u1 = v1;
     }
-    const Eigen::Vector3d& origin = frame_T_sensor.translation;
-    for (std::size_t i = 0; i < out.size() && i < subray_count_; ++i) {
-        const Eigen::Vector3d t = ring_cos_[i] * u1 + ring_sin_[i] * u2;
-        out[i].origin = origin + origin_offset_[i] * t;
-        out[i].direction = dir_scale_[i] * (axis + dir_slope_[i] * t);
-    }
+    return f;
+}
+
+void Lms200Model::PulseSubrays(std::uint64_t scan_index,
+                               std::size_t beam,
+                               const core::Pose& frame_T_sensor,
+                               std::span<Subray> out) const {
+    ForEachSubray(PulseBasis(scan_index, beam, frame_T_sensor),
+                  [&out](std::size_t i, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir) {
+                      if (i < out.size()) {
+                          out[i].origin = origin;
+                          out[i].direction = dir;
+                      }
+                  });
 }
 
 double Lms200Model::MaterialBiasM(std::uint32_t surface_id) const {

@@ -44,6 +44,14 @@ struct Subray {
     Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  // unit
 };
 
+/// Where a pulse leaves and its rotated transverse basis, in the frame of a pose.
+struct PulseFrame {
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // sensor origin
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitX();   // beam axis (unit)
+    Eigen::Vector3d u1 = Eigen::Vector3d::UnitY();     // transverse, in the scan plane (rotated)
+    Eigen::Vector3d u2 = Eigen::Vector3d::UnitZ();     // transverse, across it (rotated)
+};
+
 /// What one sub-ray hit, as the sensor model needs it.
 struct SubrayHit {
     double distance_m = std::numeric_limits<double>::infinity();  // along the sub-ray; inf = miss
@@ -149,6 +157,20 @@ public:
                       std::size_t beam,
                       const core::Pose& frame_T_sensor,
                       std::span<Subray> out) const;
+    /// The beam axis and per-pulse rotated transverse basis of pulse (scan_index, beam).
+    [[nodiscard]] PulseFrame PulseBasis(std::uint64_t scan_index,
+                                        std::size_t beam,
+                                        const core::Pose& frame_T_sensor) const;
+    /// Calls fn(i, origin, direction) for each of the SubrayCount() sub-rays of a pulse
+    /// (the same rays as PulseSubrays, without a buffer; for the simulator's hot loop).
+    template <class Fn>
+    void ForEachSubray(const PulseFrame& f, Fn&& fn) const {
+        for (std::size_t i = 0; i < subray_count_; ++i) {
+            const Eigen::Vector3d t = ring_cos_[i] * f.u1 + ring_sin_[i] * f.u2;
+            fn(i, Eigen::Vector3d(f.origin + origin_offset_[i] * t),
+               Eigen::Vector3d(dir_scale_[i] * (f.axis + dir_slope_[i] * t)));
+        }
+    }
     /// The return of one pulse from its sub-ray hits (hits[i] belongs to PulseSubrays' ray i).
     [[nodiscard]] PulseResult FormReturn(const PulseContext& pulse,
                                          std::span<const SubrayHit> hits) const;

@@ -5,6 +5,7 @@
 #include <new>
 #include <span>
 #include <type_traits>
+#include <utility>
 
 namespace casmap::sensor_models {
 
@@ -26,6 +27,13 @@ public:
             std::uninitialized_default_construct_n(data() + size_, n - size_);
             size_ = n;
         }
+    }
+    /// Constructs one more element from `args` (size() must be below N).
+    template <class... Args>
+    T& EmplaceBack(Args&&... args) {
+        T* p = ::new (static_cast<void*>(data() + size_)) T{std::forward<Args>(args)...};
+        ++size_;
+        return *p;
     }
     [[nodiscard]] T* data() { return std::launder(reinterpret_cast<T*>(raw_)); }
     [[nodiscard]] const T* data() const { return std::launder(reinterpret_cast<const T*>(raw_)); }

@@ -59,18 +59,15 @@ PulseResult CastPulse(const World& world,
                       const core::Pose& world_T_sensor,
                       PulseContext pulse) {
     const std::size_t n = model.SubrayCount();
-    ScratchArray<sensor_models::Subray, kMaxSubrays> sub;
-    sub.Construct(n);
-    model.PulseSubrays(pulse.scan_index, pulse.beam, world_T_sensor, sub.span());
     const auto tmax = static_cast<float>(model.TraceRangeM());
+    const sensor_models::PulseFrame frame =
+        model.PulseBasis(pulse.scan_index, pulse.beam, world_T_sensor);
     ScratchArray<Ray, kMaxSubrays> rays;
-    rays.Construct(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        rays[i].origin = sub[i].origin.cast<float>();
-        rays[i].direction = sub[i].direction.cast<float>();
-        rays[i].tmax_m = tmax;
-    }
-    pulse.beam_direction_world = sub[0].direction;
+    model.ForEachSubray(frame, [&rays, tmax](std::size_t, const Eigen::Vector3d& origin,
+                                             const Eigen::Vector3d& dir) {
+        rays.EmplaceBack(origin.cast<float>(), dir.cast<float>(), tmax);
+    });
+    pulse.beam_direction_world = frame.axis;
     ScratchArray<Hit, kMaxSubrays> hits;
     hits.Construct(n);
     if (n == 1) {
@@ -79,17 +76,15 @@ PulseResult CastPulse(const World& world,
         world.CastPacket(std::as_const(rays).span(), hits.span());
     }
     ScratchArray<sensor_models::SubrayHit, kMaxSubrays> sub_hits;
-    sub_hits.Construct(n);
     for (std::size_t i = 0; i < n; ++i) {
         const Hit& h = hits[i];
-        sensor_models::SubrayHit& s = sub_hits[i];
         if (!h.valid()) {
-            continue;  // default: a miss
+            sub_hits.EmplaceBack();  // a miss
+            continue;
         }
-        s.distance_m = static_cast<double>(h.distance_m);
-        s.cos_incidence = std::abs(static_cast<double>(h.normal.dot(rays[i].direction)));
-        s.reflectivity = static_cast<double>(h.reflectivity);
-        s.surface_id = h.object_id;
+        sub_hits.EmplaceBack(static_cast<double>(h.distance_m),
+                             std::abs(static_cast<double>(h.normal.dot(rays[i].direction))),
+                             static_cast<double>(h.reflectivity), h.object_id);
     }
     return model.FormReturn(pulse, std::as_const(sub_hits).span());
 }
