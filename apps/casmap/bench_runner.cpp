@@ -158,11 +158,16 @@ std::vector<Course> LoadCourses(const BenchSettings& settings,
     return out;
 }
 
-MappedBenchRun SimulateAndMap(const SimSetup& setup,
+SimulatedRun SimulateBenchRun(const SimSetup& setup,
                               const Course& course,
-                              const core::Trajectory& poses,
-                              int a) {
-    SimulatedRun sim = SimulateRun(setup, course.scene, *course.world, poses, 1, nullptr, false);
+                              const core::Trajectory& poses) {
+    return SimulateRun(setup, course.scene, *course.world, poses, 1, nullptr, false);
+}
+
+MappedBenchRun MapBenchRun(const SimSetup& setup,
+                           const Course& course,
+                           const SimulatedRun& sim,
+                           int a) {
     MappedBenchRun run;
     run.test = setup.motion_name;
     run.course = course.number;
@@ -173,6 +178,13 @@ MappedBenchRun SimulateAndMap(const SimSetup& setup,
     run.mapped = MapScans(sim.run.scans, sim.run.poses, setup.grid, settings);
     run.config_yaml = sim.run.config_yaml;
     return run;
+}
+
+MappedBenchRun SimulateAndMap(const SimSetup& setup,
+                              const Course& course,
+                              const core::Trajectory& poses,
+                              int a) {
+    return MapBenchRun(setup, course, SimulateBenchRun(setup, course, poses), a);
 }
 
 mapper::FilterParams RunFilterParams(const MappedBenchRun& run,

@@ -68,7 +68,18 @@ struct MappedBenchRun {
     std::string config_yaml;  // the run's effective configuration
 };
 
-/// Simulates (one thread) and maps one run on the setup's grid with the mapper's `a`.
+/// Simulates one run (one thread, no truth: the course holds it).
+[[nodiscard]] SimulatedRun SimulateBenchRun(const SimSetup& setup,
+                                            const Course& course,
+                                            const core::Trajectory& poses);
+
+/// Maps a simulated run on the setup's grid with the mapper's `a`.
+[[nodiscard]] MappedBenchRun MapBenchRun(const SimSetup& setup,
+                                         const Course& course,
+                                         const SimulatedRun& sim,
+                                         int a);
+
+/// SimulateBenchRun then MapBenchRun.
 [[nodiscard]] MappedBenchRun SimulateAndMap(const SimSetup& setup,
                                             const Course& course,
                                             const core::Trajectory& poses,

@@ -89,6 +89,13 @@ std::string Fixed(double v, int decimals) {
 }
 
 /// OpenCV's viridis colour map at u in [0, 1] (a 256-entry table built once).
+/// Axis labels: up to 6 significant digits, no trailing zeros.
+std::string Short(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof(buf), "%.6g", v);
+    return buf;
+}
+
 cv::Vec3b Viridis(double u) {
     static const std::array<cv::Vec3b, 256> table = [] {
         cv::Mat ramp(1, 256, CV_8U);
@@ -459,7 +466,8 @@ void WriteHeatMap(const fs::path& path, const HeatMap& map) {
     const int ch = std::clamp(500 / std::max(ny, 1), 24, 60);
     const int left = 90;
     const int top = 50;
-    cv::Mat img(top + ny * ch + 70, left + nx * cw + 150, CV_8UC3, cv::Scalar(255, 255, 255));
+    cv::Mat img(top + ny * ch + 70, std::max(left + nx * cw + 150, TextWidth(map.title, 0.55) + 20),
+                CV_8UC3, cv::Scalar(255, 255, 255));
     Text(img, map.title, {10, 22}, 0.55);
     double lo = std::numeric_limits<double>::infinity();
     double hi = -lo;
@@ -488,13 +496,13 @@ void WriteHeatMap(const fs::path& path, const HeatMap& map) {
         }
     }
     for (int ix = 0; ix < nx; ++ix) {
-        const std::string label = Fixed(map.x_values[static_cast<std::size_t>(ix)], 4);
+        const std::string label = Short(map.x_values[static_cast<std::size_t>(ix)]);
         Text(img, label, {left + ix * cw + cw / 2 - TextWidth(label, 0.38) / 2, top + ny * ch + 16},
              0.38);
     }
     Text(img, map.x_name, {left + nx * cw / 2 - TextWidth(map.x_name) / 2, top + ny * ch + 40});
     for (int iy = 0; iy < ny; ++iy) {
-        const std::string label = Fixed(map.y_values[static_cast<std::size_t>(iy)], 4);
+        const std::string label = Short(map.y_values[static_cast<std::size_t>(iy)]);
         Text(img, label, {left - 8 - TextWidth(label, 0.38), top + (ny - 1 - iy) * ch + ch / 2 + 4},
              0.38);
     }

@@ -10,6 +10,12 @@
 namespace casmap::app {
 // Declarations of the subcommands (defined in *_command.cpp).
 // BEGIN COMMAND DECLARATIONS
+void AddMapCommand(CLI::App& app, CommonOptions& common);
+#ifdef CASMAP_WITH_SIM
+void AddSimulateCommand(CLI::App& app, CommonOptions& common);
+void AddBenchCommand(CLI::App& app, CommonOptions& common);
+void AddSweepCommand(CLI::App& app, CommonOptions& common);
+#endif
 #ifdef CASMAP_WITH_SIM
 void AddTruthCommand(CLI::App& app, CommonOptions& common);
 #endif
@@ -27,6 +33,12 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     CommonOptions common;
     // BEGIN COMMAND REGISTRATION
+    AddMapCommand(app, common);
+#ifdef CASMAP_WITH_SIM
+    AddSimulateCommand(app, common);
+    AddBenchCommand(app, common);
+    AddSweepCommand(app, common);
+#endif
 #ifdef CASMAP_WITH_SIM
     AddTruthCommand(app, common);
 #endif
