@@ -23,6 +23,7 @@ void AddTruthCommand(CLI::App& app, CommonOptions& common);
 void AddScanCommand(CLI::App& app, CommonOptions& common);
 void AddMixedPixelsCommand(CLI::App& app, CommonOptions& common);
 #endif
+void AddServeCommand(CLI::App& app, CommonOptions& common);
 void AddRecordCommand(CLI::App& app, CommonOptions& common);
 // END COMMAND DECLARATIONS
 }  // namespace casmap::app
@@ -46,6 +47,7 @@ int main(int argc, char** argv) {
     AddScanCommand(app, common);
     AddMixedPixelsCommand(app, common);
 #endif
+    AddServeCommand(app, common);
     AddRecordCommand(app, common);
     // END COMMAND REGISTRATION
     try {
