@@ -1,0 +1,167 @@
+// `casmap bench` and `casmap sweep`: run the built binary on obstacle course 4 and check the
+// outputs' shape (h5py-free: the JSON is checked with /usr/bin/python3's json module),
+// determinism across thread counts and the bad-input contract.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+namespace casmap {
+namespace {
+namespace fs = std::filesystem;
+
+struct Result {
+    int code = -1;
+    std::string output;
+};
+
+Result Shell(const std::string& cmd) {
+    Result r;
+    FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
+    char buffer[4096];
+    while (pipe != nullptr && fgets(buffer, sizeof(buffer), pipe) != nullptr) {
+        r.output += buffer;
+    }
+    const int status = pipe != nullptr ? pclose(pipe) : -1;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+Result Casmap(const std::string& args) {
+    return Shell(std::string(CASMAP_EXE) + " " + args + " --courses-dir " + CASMAP_SOURCE_DIR +
+                 "/scenes/courses");
+}
+
+bool HaveSimulator() { return Shell(std::string(CASMAP_EXE) + " bench --help").code == 0; }
+
+std::string ReadText(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+fs::path FreshDir(const std::string& name) {
+    const fs::path dir = fs::path(testing::TempDir()) / ("casmap_bench_cmd_" + name);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+/// bench.json without the fields that legitimately vary (elapsed time, thread count).
+std::string RunsPart(const std::string& json) {
+    return json.substr(0, json.rfind("], \"elapsed_s\""));
+}
+
+TEST(BenchCommand, WritesEveryOutputInTheIssueShapeAndIsThreadIndependent) {
+    if (!HaveSimulator()) {
+        GTEST_SKIP() << "built without the simulator";
+    }
+    const fs::path dir = FreshDir("outputs");
+    Result r = Casmap("bench --courses 4 --tests T,TRP --seed 3 --threads 1 --out " +
+                      (dir / "a").string() + " --json " + (dir / "a.json").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("cas"), std::string::npos) << "PI table on the terminal";
+    for (const char* f :
+         {"bench.json", "pi_chart.png", "table2.md", "pi_table.txt", "sheets/course04_T.png",
+          "sheets/course04_TRP.png", "runs/course04_T.yaml", "runs/course04_TRP.yaml"}) {
+        EXPECT_TRUE(fs::exists(dir / "a" / f)) << f;
+    }
+    EXPECT_EQ(ReadText(dir / "a.json"), ReadText(dir / "a" / "bench.json"));
+    EXPECT_NE(ReadText(dir / "a" / "runs" / "course04_T.yaml").find("seed: 3"), std::string::npos);
+
+    // The issue's shape, checked by an independent JSON parser.
+    const std::string script = dir.string() + "/check.py";
+    std::ofstream(script) << R"PY(
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert set(d) >= {"runs", "elapsed_s", "threads"}, d.keys()
+assert len(d["runs"]) == 2
+for r in d["runs"]:
+    assert r["course"] == 4 and r["test"] in ("T", "TRP") and r["seed"] == 3
+    assert set(r["filters"]) == {"cas", "wiener", "average", "median", "cwm"}
+    for f in r["filters"].values():
+        assert set(f) >= {"pi", "rmse_m", "spikes", "fill_error_m"}
+        assert 0 < f["pi"] < 5 and f["rmse_m"] > 0 and f["spikes"] >= 0
+    c = r["cas_classes_pct"]
+    assert abs(c["mixed"] + c["missing"] + c["untouched"] - 100) < 1e-6, c
+print("ok")
+)PY";
+    r = Shell("/usr/bin/python3 " + script + " " + (dir / "a.json").string());
+    EXPECT_EQ(r.code, 0) << r.output;
+
+    r = Casmap("bench --courses 4 --tests T,TRP --seed 3 --threads 2 --no-sheets --out " +
+               (dir / "b").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(RunsPart(ReadText(dir / "a" / "bench.json")),
+              RunsPart(ReadText(dir / "b" / "bench.json")))
+        << "bench figures depend on the thread count";
+}
+
+TEST(BenchCommand, BadInputExitsTwoWithOneLineAndNoJson) {
+    if (!HaveSimulator()) {
+        GTEST_SKIP() << "built without the simulator";
+    }
+    const fs::path dir = FreshDir("bad");
+    const std::string json = " --json " + (dir / "x.json").string();
+    struct Case {
+        std::string args;
+        std::string needle;
+    };
+    const std::vector<Case> cases = {
+        {"bench --courses 0" + json, "--courses"},
+        {"bench --courses 17" + json, "--courses"},
+        {"bench --courses 9-3" + json, "inverted"},
+        {"bench --tests T,XY" + json, "XY"},
+        {"bench --set nope=1" + json, "nope"},
+        {"bench --courses 4 --json /nonexistent_dir/b.json", "/nonexistent_dir"},
+        {"sweep --set A=10:5:1", "inverted"},
+        {"sweep --set A=1:5:0", "STEP"},
+        {"sweep --set Q=1:5:1", "Q"},
+        {"sweep --set B=1:x:1", "B=1:x:1"},
+        {"sweep --courses 4 --tests Z", "--tests"},
+    };
+    for (const Case& c : cases) {
+        const Result r = Casmap(c.args + " --out " + (dir / "out").string());
+        EXPECT_EQ(r.code, 2) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.needle), std::string::npos) << c.args << "\n" << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    }
+    EXPECT_FALSE(fs::exists(dir / "x.json"));
+    EXPECT_FALSE(fs::exists(dir / "out" / "bench.json"));
+}
+
+TEST(SweepCommand, TwoParameterGridGivesStatsAndHeatMap) {
+    if (!HaveSimulator()) {
+        GTEST_SKIP() << "built without the simulator";
+    }
+    const fs::path dir = FreshDir("sweep");
+    const Result r = Casmap("sweep --set A=6:12:6 --set a=2:3:1 --courses 4 --tests T --out " +
+                            (dir / "s").string() + " --json " + (dir / "s.json").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "s" / "heatmap.png"));
+    EXPECT_TRUE(fs::exists(dir / "s" / "runs" / "course04_T.yaml"));
+    const std::string script = dir.string() + "/check.py";
+    std::ofstream(script) << R"PY(
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["parameters"] == ["A", "a"], d["parameters"]
+pts = d["points"]
+assert [(p["params"]["A"], p["params"]["a"]) for p in pts] == [(6, 2), (6, 3), (12, 2), (12, 3)]
+for p in pts:
+    assert p["runs"] == 1 and p["pi_std"] == 0 and p["pi_min"] == p["pi_max"] == p["pi_mean"]
+    assert 0 < p["pi_mean"] < 5
+# a changes the certainty map (re-mapped), so the points differ
+assert len({p["pi_mean"] for p in pts}) == 4, pts
+print("ok")
+)PY";
+    const Result check = Shell("/usr/bin/python3 " + script + " " + (dir / "s.json").string());
+    EXPECT_EQ(check.code, 0) << check.output;
+}
+
+}  // namespace
+}  // namespace casmap
