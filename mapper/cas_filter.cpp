@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <utility>
 #include <vector>
@@ -122,9 +123,13 @@ void ApplyNetworkSse(const std::vector<Comparator>& net, Lanes* v) {
     }
 }
 
-void ApplyNetwork(const std::vector<Comparator>& net, Lanes* v) {
+bool UseAvx2() {
     static const bool avx2 = __builtin_cpu_supports("avx2") != 0;
-    if (avx2) {
+    return avx2;
+}
+
+void ApplyNetwork(const std::vector<Comparator>& net, Lanes* v) {
+    if (UseAvx2()) {
         ApplyNetworkAvx2(net, v);
     } else {
         ApplyNetworkSse(net, v);
@@ -282,8 +287,64 @@ void WindowMax(const float* src, int k, std::size_t n, float* dst) {
     }
 }
 
-CASMAP_VECTOR_CLONES void ComputeRowStats(
+// k = 2, fused: each column's five values are read once and the three statistics kept in
+// registers. Same order of additions as the generic path, so the same bits.
+CASMAP_VECTOR_CLONES void RowStatsK2(
+    const float* abs_h, const float* c, std::size_t cols, int top, RowStats& s) {
+    const std::size_t off = static_cast<std::size_t>(top) * cols;
+    const float* __restrict h0 = abs_h + off;
+    const float* __restrict h1 = h0 + cols;
+    const float* __restrict h2 = h1 + cols;
+    const float* __restrict h3 = h2 + cols;
+    const float* __restrict h4 = h3 + cols;
+    const float* __restrict c0 = c + off;
+    const float* __restrict c1 = c0 + cols;
+    const float* __restrict c2 = c1 + cols;
+    const float* __restrict c3 = c2 + cols;
+    const float* __restrict c4 = c3 + cols;
+    float* __restrict sc = s.col_c.data();
+    float* __restrict sh = s.col_h.data();
+    float* __restrict sm = s.col_max.data();
+    for (std::size_t j = 0; j < cols; ++j) {
+        sc[j] = (((c0[j] + c1[j]) + c2[j]) + c3[j]) + c4[j];
+    }
+    for (std::size_t j = 0; j < cols; ++j) {
+        sh[j] = (((h0[j] + h1[j]) + h2[j]) + h3[j]) + h4[j];
+    }
+    for (std::size_t j = 0; j < cols; ++j) {
+        float m = h0[j];
+        m = h1[j] > m ? h1[j] : m;
+        m = h2[j] > m ? h2[j] : m;
+        m = h3[j] > m ? h3[j] : m;
+        m = h4[j] > m ? h4[j] : m;
+        sm[j] = m;
+    }
+    float* __restrict wc = s.win_c.data() + 2;
+    float* __restrict wh = s.win_h.data() + 2;
+    float* __restrict wm = s.win_max.data() + 2;
+    const std::size_t n = cols - 4;
+    for (std::size_t j = 0; j < n; ++j) {
+        wc[j] = (((sc[j] + sc[j + 1]) + sc[j + 2]) + sc[j + 3]) + sc[j + 4];
+    }
+    for (std::size_t j = 0; j < n; ++j) {
+        wh[j] = (((sh[j] + sh[j + 1]) + sh[j + 2]) + sh[j + 3]) + sh[j + 4];
+    }
+    for (std::size_t j = 0; j < n; ++j) {
+        float m = sm[j];
+        m = sm[j + 1] > m ? sm[j + 1] : m;
+        m = sm[j + 2] > m ? sm[j + 2] : m;
+        m = sm[j + 3] > m ? sm[j + 3] : m;
+        m = sm[j + 4] > m ? sm[j + 4] : m;
+        wm[j] = m;
+    }
+}
+
+void ComputeRowStats(
     const float* abs_h, const float* c, std::size_t cols, int top, int k, RowStats& s) {
+    if (k == 2) {
+        RowStatsK2(abs_h, c, cols, top, s);
+        return;
+    }
     const int span = 2 * k + 1;
     const std::size_t off = static_cast<std::size_t>(top) * cols;
     ColumnSum(c + off, cols, span, cols, s.col_c.data());
@@ -459,7 +520,8 @@ void CasFilterInto(const core::MapF& elevation,
     const float* c = certainty.data.data();
     float* y = out.elevation.data.data();
     RowStats s(ucols);
-    fills.clear();
+    fills.resize(elevation.data.size());
+    std::size_t n_fills = 0;
     for (int i = k; i < rows - k; ++i) {
         ComputeRowStats(abs_h.data(), c, ucols, i - k, k, s);
         const std::size_t row_off = static_cast<std::size_t>(i) * ucols;
@@ -475,12 +537,12 @@ void CasFilterInto(const core::MapF& elevation,
                 ClassifyRowSum<false>(in, t, uk, ucols - uk, y + row_off, cls);
             }
         }
-        for (std::size_t j = uk; j < ucols - uk; ++j) {
-            if (cls[j] == static_cast<std::uint8_t>(PixelClass::kFilled)) {
-                fills.push_back(row_off + j);
-            }
+        for (std::size_t j = uk; j < ucols - uk; ++j) {  // branch-free append
+            fills[n_fills] = row_off + j;
+            n_fills += cls[j] == static_cast<std::uint8_t>(PixelClass::kFilled) ? 1U : 0U;
         }
     }
+    fills.resize(n_fills);
     // The weighted median reads the unfiltered map h, so filling after the loop changes nothing.
     if (k == 2 && p.wm_empty == WmEmpty::kInclude) {
         FastSkeletonMedian(h, cols, fills, y);
