@@ -262,6 +262,26 @@ TEST(CasFilter, GlobalNormalisationRemovesLowBoxTopsInSparseArea) {
     EXPECT_EQ(ClassAt(CasFilter(h, c, global), 4, 4), PixelClass::kRemoved);
 }
 
+TEST(CasFilter, OtherWindowSizesFollowTheSameRules) {
+    for (const int k : {1, 3}) {
+        const int n = 4 * k + 3;
+        core::MapF h = Filled(n, n, 0.002F);
+        core::MapF c = Filled(n, n, 3.0F);
+        const int mid = n / 2;
+        h.at(mid, mid) = 0.5F;          // spike in a sparse area
+        h.at(mid + k, mid + k) = 0.0F;  // a never-observed cell next to it
+        c.at(mid + k, mid + k) = 0.0F;
+        CasParams p;
+        p.k = k;
+        p.G = 1000.0;  // any window is "sparse"
+        const FilterResult r = CasFilter(h, c, p);
+        EXPECT_EQ(r.elevation.at(mid, mid), 0.0F) << "k " << k;
+        EXPECT_EQ(ClassAt(r, mid, mid), PixelClass::kRemoved) << "k " << k;
+        EXPECT_EQ(ClassAt(r, k - 1, mid), PixelClass::kBorder) << "k " << k;
+        EXPECT_EQ(ClassAt(r, k, k), PixelClass::kUntouched) << "k " << k;
+    }
+}
+
 TEST(CasFilter, RejectsMismatchedSizes) {
     EXPECT_THROW((void)CasFilter(Filled(5, 5, 0.0F), Filled(5, 6, 0.0F), CasParams{}), InputError);
 }

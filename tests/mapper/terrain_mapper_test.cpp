@@ -188,6 +188,26 @@ TEST(TerrainMapper, PlacesEachBeamWithThePoseAtItsOwnTime) {
     }
 }
 
+TEST(TerrainMapper, AddBeamIsEq1PlusEq4) {
+    TerrainMapper m(SmallGrid());
+    const core::Pose pose =
+        core::PoseFromXyzRpy(Eigen::Vector3d(0.5, 0.1, 1.0), Eigen::Vector3d(0.05, 0.5, 0.2));
+    SensorState s;
+    s.world_R_sensor = pose.rotation.toRotationMatrix();
+    s.origin_m = pose.translation;
+    s.motion.displacement_m = Eigen::Vector3d(0.013, 0.0, 0.0);
+    m.AddBeam(s, 0.3, 1.7);
+    const Eigen::Vector3d p = BeamToWorld(pose, 0.3, 1.7);
+    const core::Cell cell = *m.config().grid.CellOf(p.x(), p.y());
+    EXPECT_FLOAT_EQ(m.elevation().at(cell.row, cell.col), static_cast<float>(p.z()));
+    // A second hit within Delta z_max of the first adds a; one just beyond does not.
+    const double dz = DeltaZMax(s, 0.3, 1.7, 0.032);
+    ASSERT_TRUE(m.AddPoint(Eigen::Vector3d(p.x(), p.y(), p.z() - 0.99 * dz), dz));
+    EXPECT_EQ(m.certainty().at(cell.row, cell.col), 6.0F);
+    ASSERT_TRUE(m.AddPoint(Eigen::Vector3d(p.x(), p.y(), p.z() - 1.01 * dz), dz));
+    EXPECT_EQ(m.certainty().at(cell.row, cell.col), 6.0F);
+}
+
 TEST(TerrainMapper, BeamsWithoutReturnOrPoseUpdateNothing) {
     TerrainMapper m(SmallGrid());
     const core::Trajectory traj = MovingTable(30 * kDeg);
