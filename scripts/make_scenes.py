@@ -150,7 +150,7 @@ def write_indoor():
 
 
 def rough_ground(seed=20240601, x_range=(-2.0, 10.0), y_range=(-3.0, 0.4), step=0.1):
-    """Heightfield of random smooth bumps (3 cm) plus fine roughness (1 cm), zero at the curb."""
+    """Heightfield: 12 random plane waves (4.3 cm RMS together) plus +-1 cm roughness, 0 at the curb."""
     rng = np.random.RandomState(seed)
     xs = np.arange(x_range[0], x_range[1] + step / 2, step)
     ys = np.arange(y_range[0], y_range[1] + step / 2, step)
@@ -189,8 +189,9 @@ def write_outdoor():
     write_ply_binary(os.path.join(ROOT, "meshes", "rough_ground.ply"), verts, faces)
     head = """\
 # Outdoor scene for the vehicle (paper's Fig. 9, right): rough ground (a seeded mesh from
-# scripts/make_scenes.py: 3 cm undulations plus 1 cm roughness on a 0.1 m grid, x in [-2, 10],
-# y in [-3, 0.4]) marked terrain: true for the vehicle rig, a 0.15 m concrete curb along
+# scripts/make_scenes.py: smooth undulations of 4 cm RMS (extremes about +-13 cm) plus +-1 cm
+# roughness on a 0.1 m grid, x in [-2, 10], y in [-3, 0.4]) marked terrain: true for the
+# vehicle rig, a 0.15 m concrete curb along
 # y in [0.4, 0.55], a sidewalk slab (top 0.12 m) beyond it, a lamp post and two rocks.
 # The vehicle drives along +x near y = -1; map region x in [1, 6) m, y in [-1, 1) m.
 # Reflectivity (assumed): soil 0.2, concrete 0.35, lamp post 0.3, rocks 0.25.
