@@ -4,7 +4,8 @@
 // surviving spikes, filled-cell error, Table II classes). Runs in parallel across courses and
 // tests, one thread per run, so the figures do not depend on --threads.
 // Outputs (DIR, default out/bench): bench.json, pi_chart.png (Fig. 8), table2.md (Table II),
-// pi_table.txt, sheets/courseNN_TEST.png (Fig. 7), runs/courseNN_TEST.yaml (effective config).
+// poles.md, pi_table.txt, sheets/courseNN_TEST.png (Fig. 7), runs/courseNN_TEST.yaml (effective
+// config).
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -125,6 +126,7 @@ void RunBench(const BenchOptions& opt, const CommonOptions& common) {
     }
     WritePiChart(out / "pi_chart.png", runs);
     io::WriteTextAtomically(out / "table2.md", TableTwoMarkdown(runs));
+    io::WriteTextAtomically(out / "poles.md", PolesMarkdown(runs));
     const std::string table = PiTable(runs);
     io::WriteTextAtomically(out / "pi_table.txt", table);
     const double elapsed =

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <set>
 #include <sstream>
+#include <variant>
 
 #include "core/input_error.hpp"
 #include "core/parallel.hpp"
@@ -54,6 +55,53 @@ double FillError(const core::MapF& map,
         }
     }
     return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : std::nan("");
+}
+
+/// Poles of the scene (objects named pole<N>) with the cell holding their axis.
+struct Pole {
+    std::string name;
+    int row = 0;
+    int col = 0;
+    double height_m = 0.0;
+};
+
+std::vector<Pole> Poles(const core::Scene& scene, const core::GridGeometry& grid) {
+    std::vector<Pole> poles;
+    for (const core::SceneObject& o : scene.objects) {
+        const auto* cyl = std::get_if<core::CylinderShape>(&o.shape);
+        if (cyl == nullptr || o.name.rfind("pole", 0) != 0) {
+            continue;
+        }
+        const Eigen::Vector3d& p = o.world_T_object.translation;
+        if (const std::optional<core::Cell> cell = grid.CellOf(p.x(), p.y())) {
+            poles.push_back({o.name, cell->row, cell->col, p.z() + 0.5 * cyl->height_m});
+        }
+    }
+    std::sort(poles.begin(), poles.end(),
+              [](const Pole& a, const Pole& b) { return a.name < b.name; });
+    return poles;
+}
+
+/// A map keeps a pole when it reaches half the pole's height within one cell of it.
+bool Keeps(const core::MapF& map, const Pole& pole) {
+    for (int r = std::max(0, pole.row - 1); r <= std::min(map.rows - 1, pole.row + 1); ++r) {
+        for (int c = std::max(0, pole.col - 1); c <= std::min(map.cols - 1, pole.col + 1); ++c) {
+            if (map.at(r, c) >= 0.5 * pole.height_m) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+std::vector<std::string> KeptPoles(const core::MapF& map, const std::vector<Pole>& poles) {
+    std::vector<std::string> kept;
+    for (const Pole& p : poles) {
+        if (Keeps(map, p)) {
+            kept.push_back(p.name);
+        }
+    }
+    return kept;
 }
 
 }  // namespace
@@ -215,6 +263,11 @@ BenchRun ScoreRun(const MappedBenchRun& run,
     out.scans = static_cast<std::int64_t>(run.scans);
     const mapper::FilterResult cas = mapper::RunFilter(mapper::FilterMethod::kCas, raw, c, params);
     out.cas_classes = mapper::ClassPercentages(cas.classes, c);
+    const std::vector<Pole> poles = Poles(course.scene, run.setup.grid);
+    for (const Pole& p : poles) {
+        out.poles.push_back(p.name);
+    }
+    out.poles_kept["raw"] = KeptPoles(raw, poles);
     for (const mapper::FilterMethod m : mapper::AllFilterMethods()) {
         const std::string name(mapper::ToString(m));
         const mapper::FilterResult result =
@@ -224,6 +277,7 @@ BenchRun ScoreRun(const MappedBenchRun& run,
         out.filters[name] =
             FilterScore{metrics.pi, metrics.rmse_m, metrics.spikes,
                         FillError(result.elevation, course.truth, cas.classes, region)};
+        out.poles_kept[name] = KeptPoles(result.elevation, poles);
         out.raw_rmse_m = metrics.raw_rmse_m;
         out.raw_spikes = metrics.raw_spikes;
         if (sheet != nullptr) {

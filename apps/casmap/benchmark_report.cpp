@@ -161,6 +161,26 @@ std::string JsonString(const std::string& text) {
     return out + "\"";
 }
 
+namespace {
+std::string NameList(const std::vector<std::string>& names) {
+    std::string j = "[";
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        j += (i ? ", " : "") + JsonString(names[i]);
+    }
+    return j + "]";
+}
+
+std::string PolesJson(const BenchRun& r) {
+    std::string j = ",\n   \"poles\": " + NameList(r.poles) + ", \"poles_kept\": {";
+    bool first = true;
+    for (const auto& [map, kept] : r.poles_kept) {
+        j += (first ? "" : ", ") + JsonString(map) + ": " + NameList(kept);
+        first = false;
+    }
+    return j + "}";
+}
+}  // namespace
+
 std::string BenchJson(const std::vector<BenchRun>& runs, double elapsed_s, int threads) {
     std::string j = "{\"runs\": [";
     for (std::size_t i = 0; i < runs.size(); ++i) {
@@ -190,7 +210,7 @@ std::string BenchJson(const std::vector<BenchRun>& runs, double elapsed_s, int t
              ", \"untouched\": " + JsonNumber(o.untouched_pct) +
              ", \"cells\": " + std::to_string(o.cells) + "}" +
              ",\n   \"raw\": {\"rmse_m\": " + JsonNumber(r.raw_rmse_m) +
-             ", \"spikes\": " + std::to_string(r.raw_spikes) + "}}";
+             ", \"spikes\": " + std::to_string(r.raw_spikes) + "}" + PolesJson(r) + "}";
     }
     j += "\n], \"elapsed_s\": " + JsonNumber(elapsed_s) +
          ", \"threads\": " + std::to_string(threads) + "}\n";
@@ -266,6 +286,57 @@ std::string TableTwoMarkdown(const std::vector<BenchRun>& runs) {
             }
             md += "\n";
         }
+    }
+    return md;
+}
+
+std::string PolesMarkdown(const std::vector<BenchRun>& runs) {
+    static const char* const kDiameters[] = {"24", "21", "19", "15", "11", "9", "6", "4.5", "2.5"};
+    std::string md =
+        "# Poles kept per filter\n\nA map keeps a pole when it reaches half the pole's height "
+        "(0.457 m) within one cell of the pole's cell. Counts are runs that kept the pole / runs "
+        "whose raw map showed it (runs where the raw map missed it cannot count).\n\n"
+        "| pole | diameter (mm) | runs | raw |";
+    for (const std::string& f : BenchFilterNames()) {
+        md += " " + DisplayName(f) + " |";
+    }
+    md += "\n|---|---|---|---|";
+    for (std::size_t i = 0; i < BenchFilterNames().size(); ++i) {
+        md += "---|";
+    }
+    md += "\n";
+    for (int k = 1; k <= 9; ++k) {
+        const std::string pole = "pole" + std::to_string(k);
+        const auto kept = [&](const BenchRun& r, const std::string& map) {
+            const auto it = r.poles_kept.find(map);
+            return it != r.poles_kept.end() &&
+                   std::find(it->second.begin(), it->second.end(), pole) != it->second.end();
+        };
+        int present = 0;
+        int seen = 0;
+        std::map<std::string, int> count;
+        for (const BenchRun& r : runs) {
+            if (std::find(r.poles.begin(), r.poles.end(), pole) == r.poles.end()) {
+                continue;
+            }
+            ++present;
+            if (!kept(r, "raw")) {
+                continue;
+            }
+            ++seen;
+            for (const std::string& f : BenchFilterNames()) {
+                count[f] += kept(r, f) ? 1 : 0;
+            }
+        }
+        if (present == 0) {
+            continue;
+        }
+        md += "| " + pole + " | " + kDiameters[k - 1] + " | " + std::to_string(present) + " | " +
+              std::to_string(seen) + " |";
+        for (const std::string& f : BenchFilterNames()) {
+            md += " " + std::to_string(count[f]) + "/" + std::to_string(seen) + " |";
+        }
+        md += "\n";
     }
     return md;
 }

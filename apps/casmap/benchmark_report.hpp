@@ -35,6 +35,10 @@ struct BenchRun {
     double raw_rmse_m = 0.0;
     std::int64_t raw_spikes = 0;
     std::int64_t scans = 0;
+    /// Poles of the course (scene objects named pole1..pole9) and, per map ("raw" and each
+    /// filter), those it kept: the map reaches half the pole's height within one cell of it.
+    std::vector<std::string> poles;
+    std::map<std::string, std::vector<std::string>> poles_kept;
 };
 
 /// The maps of one run for a Fig. 7-style sheet (all the same size).
@@ -61,6 +65,10 @@ struct SheetMaps {
 /// Table II-style Markdown: per test, CAS's removed/filled/untouched shares per course, with
 /// the paper's test-T figures beside ours.
 [[nodiscard]] std::string TableTwoMarkdown(const std::vector<BenchRun>& runs);
+
+/// Markdown: per pole (pole1 = 24 mm ... pole9 = 2.5 mm), in how many runs each filter kept it
+/// out of the runs whose raw map showed it.
+[[nodiscard]] std::string PolesMarkdown(const std::vector<BenchRun>& runs);
 
 /// Fig. 8-style chart: PI per course per filter, one panel per test present in `runs`.
 void WritePiChart(const std::filesystem::path& path, const std::vector<BenchRun>& runs);
