@@ -78,28 +78,19 @@ private:
     double inv_2s2_;
 };
 
-// Bisection on the sign of the slope in [a, b]; the waveform rises at a iff rising_at_a.
-double RefineExtremum(const Waveform& w, double a, double b, bool rising_at_a) {
-    for (int it = 0; it < 12; ++it) {
-        const double m = 0.5 * (a + b);
-        if ((w.Slope(m) > 0.0) == rising_at_a) {
-            a = m;
-        } else {
-            b = m;
-        }
-    }
-    return 0.5 * (a + b);
-}
-
-// Root of Value(x) = c in [a, b] (Value(a) - c and Value(b) - c of opposite sign):
-// Illinois regula falsi to 0.05 mm.
-double Crossing(const Waveform& w, double a, double b, double c) {
-    double fa = w.Value(a) - c;
-    double fb = w.Value(b) - c;
+// Root of g(x) = 0 in [a, b] where g(a) and g(b) differ in sign: Illinois regula falsi to
+// 0.05 mm (a few evaluations for these smooth sums of Gaussians).
+template <class G>
+double Root(const G& g, double a, double b) {
+    double fa = g(a);
+    double fb = g(b);
     int side = 0;
     for (int it = 0; it < 40 && std::abs(b - a) > 5e-5; ++it) {
         const double x = (fb - fa) != 0.0 ? b - fb * (b - a) / (fb - fa) : 0.5 * (a + b);
-        const double fx = w.Value(x) - c;
+        const double fx = g(x);
+        if (fx == 0.0) {
+            return x;
+        }
         if ((fx > 0.0) == (fb > 0.0)) {
             b = x;
             fb = fx;
@@ -115,11 +106,18 @@ double Crossing(const Waveform& w, double a, double b, double c) {
             }
             side = 1;
         }
-        if (fx == 0.0) {
-            return x;
-        }
     }
     return std::abs(fa) < std::abs(fb) ? a : b;
+}
+
+// The extremum between a and b (the slope changes sign there).
+double RefineExtremum(const Waveform& w, double a, double b) {
+    return Root([&w](double x) { return w.Slope(x); }, a, b);
+}
+
+// Where the waveform crosses c between a and b.
+double Crossing(const Waveform& w, double a, double b, double c) {
+    return Root([&w, c](double x) { return w.Value(x) - c; }, a, b);
 }
 
 // Steps outward from `from` by one sigma until the waveform falls below c; returns the bound.
@@ -158,7 +156,7 @@ std::size_t SegmentLobes(std::span<const EchoSample> seg,
             const double x = k == steps ? last : first + static_cast<double>(k) * h;
             const bool rising = k == steps ? false : w.Slope(x) > 0.0;
             if (rising != rising_prev) {
-                const double e = RefineExtremum(w, x_prev, x, rising_prev);
+                const double e = RefineExtremum(w, x_prev, x);
                 if (rising_prev && n_max < maxima.size()) {
                     maxima[n_max++] = e;
                 } else if (!rising_prev && n_min < minima.size()) {
