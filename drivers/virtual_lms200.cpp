@@ -112,9 +112,11 @@ struct VirtualLms200::Impl {
         tx.push_back(std::move(c));
     }
 
-    void EnqueueFrame(Chunk c) {
+    /// Queues a telegram (with faults). `start`: when the line starts sending it, if the
+    /// line is idle (default: now).
+    void EnqueueFrame(Chunk c, std::optional<Clock::time_point> start = std::nullopt) {
         if (tx.empty()) {
-            next_byte = std::max(next_byte, Clock::now());
+            next_byte = start ? *start : std::max(next_byte, Clock::now());
         }
         const FaultConfig& f = cfg.faults;
         if (Roll(f.garbage_rate)) {
@@ -288,13 +290,32 @@ struct VirtualLms200::Impl {
         }
         const bool partial = op_mode == mode::kStreamPartial && !on_request;
         const int k = variant.Turns();
-        const std::int64_t unit =
+        const std::int64_t newest =
             partial ? turns - *origin_turn - 1 : (turns - *origin_turn) / k - 1;
-        if (unit < 0 || (!on_request && last_sent_unit && unit <= *last_sent_unit)) {
+        if (newest < 0 || (!on_request && last_sent_unit && newest <= *last_sent_unit)) {
             return false;
         }
+        const auto completion = [&](std::int64_t u) {
+            const std::int64_t end_turn = *origin_turn + (partial ? u + 1 : (u + 1) * k);
+            return epoch +
+                   Duration(static_cast<double>(end_turn) * core::Lms200Timing::kTurnPeriodS);
+        };
+        std::int64_t unit = newest;
+        std::optional<Clock::time_point> start;
         if (!on_request && last_sent_unit) {
-            stats.scans_skipped += static_cast<std::uint64_t>(unit - *last_sent_unit - 1);
+            // A real-time scanner starts each telegram at max(line free, sweep complete) with
+            // the newest sweep complete by then. Replay that schedule so this emulator's own
+            // scheduling delays (up to 50 ms) neither drop sweeps nor change which are sent.
+            const Clock::time_point line_free = next_byte;
+            const std::int64_t first = *last_sent_unit + 1;
+            if (Clock::now() - std::max(line_free, completion(first)) < Duration(0.05)) {
+                unit = first;
+                while (unit < newest && completion(unit + 1) <= line_free) {
+                    ++unit;
+                }
+                start = std::max(line_free, completion(unit));
+            }
+            stats.scans_skipped += static_cast<std::uint64_t>(unit - first);
         }
         const std::uint64_t index = static_cast<std::uint64_t>(partial ? unit / k : unit);
         std::optional<core::Scan> scan = source.Sweep(index, variant);
@@ -334,7 +355,7 @@ struct VirtualLms200::Impl {
                                        : SweepDurationS(variant);
         c.beam0_wall_s = epoch_wall_s +
                          static_cast<double>(end_turn) * core::Lms200Timing::kTurnPeriodS - sweep_s;
-        EnqueueFrame(std::move(c));
+        EnqueueFrame(std::move(c), start);
         return true;
     }
 
