@@ -220,6 +220,33 @@ TEST(Simulator, SameSeedSameScansAtAnyThreadCount) {
     EXPECT_GT(differ, 500);  // another seed, other noise
 }
 
+TEST(Simulator, ClosedFormPathMatchesTheWaveformOnATiltedFloor) {
+    // A grazing floor and box edges: compact footprints take the closed form under kAuto.
+    core::Scene scene;
+    scene.objects.push_back(Box("floor", {40.0, 40.0, 0.02}, {0.0, 0.0, -0.01}, 0.3));
+    scene.objects.push_back(Box("box", {0.5, 0.5, 0.4}, {2.0, 0.3, 0.2}, 0.6));
+    const World world(scene);
+    sensor_models::Lms200Config exact;
+    exact.return_algorithm = sensor_models::ReturnAlgorithm::kWaveform;
+    const sensor_models::Lms200Model reference{exact, 4};
+    const sensor_models::Lms200Model fast{sensor_models::Lms200Config{}, 4};
+    const core::Pose pose = core::PoseFromXyzRpy({0.0, 0.0, 1.0}, {0.0, 35.0 * kDeg, 0.0});
+    int same = 0;
+    int total = 0;
+    for (std::uint64_t k = 0; k < 10; ++k) {
+        const ScanResult a = CastScanAt(world, reference, pose, 0.0, k);
+        const ScanResult b = CastScanAt(world, fast, pose, 0.0, k);
+        for (std::size_t i = 0; i < a.scan.beams.size(); ++i) {
+            ASSERT_EQ(a.scan.beams[i].status, b.scan.beams[i].status) << k << " " << i;
+            ASSERT_EQ(a.truth.labels[i], b.truth.labels[i]) << k << " " << i;
+            EXPECT_LE(std::abs(int{a.scan.beams[i].raw} - int{b.scan.beams[i].raw}), 1);
+            same += a.scan.beams[i].raw == b.scan.beams[i].raw;
+            ++total;
+        }
+    }
+    EXPECT_GT(same, total * 95 / 100);  // centroids agree to < 0.25 mm, so 1 mm steps rarely flip
+}
+
 TEST(Simulator, TargetBeyondTheEightMetreModeGives8183) {
     core::Scene scene;
     scene.objects.push_back(Box("wall", {0.2, 4.0, 4.0}, {9.1, 0.0, 0.0}, 0.9));
