@@ -65,7 +65,7 @@ int TextWidth(const std::string& s, double scale = 0.45) {
 
 void WritePng(const fs::path& path, const cv::Mat& image) {
     std::vector<uchar> bytes;
-    if (!cv::imencode(".png", image, bytes)) {
+    if (!cv::imencode(".png", image, bytes, {cv::IMWRITE_PNG_COMPRESSION, 6})) {
         throw MakeInputError(path.string(), "image", "", "OpenCV cannot encode PNG");
     }
     io::WriteAtomically(path, [&](const fs::path& tmp) {
