@@ -44,9 +44,9 @@ std::vector<core::Scan> TableScans(int count) {
             const double a = s.BeamAngle(i);
             // Roughly the floor range of a 1 m high sensor pitched 30 deg, clipped at 4 m.
             const double r = std::min(4.0, 2.0 / std::max(0.2, std::cos(a)));
-            s.beams[i] =
-                core::Beam{static_cast<float>(r + 0.01 * std::sin(0.7 * n + i)),
-                           i % 23 == 0 ? core::BeamStatus::kNoReturn : core::BeamStatus::kOk, 0};
+            s.beams[i] = core::Beam{
+                static_cast<float>(r + 0.01 * std::sin(0.7 * n + static_cast<double>(i))),
+                i % 23 == 0 ? core::BeamStatus::kNoReturn : core::BeamStatus::kOk, 0};
         }
         scans.push_back(std::move(s));
     }
