@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <memory>
 #include <string>
-#include <vector>
 
 #include "apps/casmap/commands.hpp"
+#include "apps/casmap/pipeline.hpp"
 #include "core/grid.hpp"
 #include "core/input_error.hpp"
 #include "io/image.hpp"
@@ -28,56 +28,6 @@ struct TruthOptions {
     std::string png;  // optional colour PNG for people
 };
 
-// "X0,Y0,CELL_M,ROWS,COLS" -> GridGeometry; throws InputError naming --grid and the rule.
-core::GridGeometry ParseTruthGrid(const std::string& text) {
-    const std::string rule =
-        "must be X0,Y0,CELL_M,ROWS,COLS (metres, metres, metres > 0, "
-        "integers > 0)";
-    std::vector<std::string> parts;
-    std::size_t start = 0;
-    for (std::size_t comma = text.find(',');; comma = text.find(',', start)) {
-        parts.push_back(text.substr(start, comma - start));
-        if (comma == std::string::npos) {
-            break;
-        }
-        start = comma + 1;
-    }
-    if (parts.size() != 5) {
-        throw MakeInputError("command line", "--grid", text, rule);
-    }
-    core::GridGeometry grid;
-    try {
-        std::size_t used = 0;
-        const auto number = [&](const std::string& s) {
-            const double v = std::stod(s, &used);
-            if (used != s.size()) {
-                throw std::invalid_argument(s);
-            }
-            return v;
-        };
-        const auto integer = [&](const std::string& s) {
-            const int v = std::stoi(s, &used);
-            if (used != s.size()) {
-                throw std::invalid_argument(s);
-            }
-            return v;
-        };
-        grid.x0_m = number(parts[0]);
-        grid.y0_m = number(parts[1]);
-        grid.cell_m = number(parts[2]);
-        grid.rows = integer(parts[3]);
-        grid.cols = integer(parts[4]);
-    } catch (const std::logic_error&) {  // invalid_argument, out_of_range
-        throw MakeInputError("command line", "--grid", text, rule);
-    }
-    try {
-        grid.Validate();
-    } catch (const InputError& e) {
-        throw MakeInputError("command line", "--grid", text, e.what());
-    }
-    return grid;
-}
-
 void RunTruth(const TruthOptions& opt, const CommonOptions& common) {
     const std::string ext = std::filesystem::path(opt.out).extension().string();
     if (ext != ".tiff" && ext != ".tif") {
@@ -86,7 +36,7 @@ void RunTruth(const TruthOptions& opt, const CommonOptions& common) {
     if (!opt.png.empty() && std::filesystem::path(opt.png).extension() != ".png") {
         throw MakeInputError("command line", "--png", opt.png, "must end in .png");
     }
-    const core::GridGeometry grid = ParseTruthGrid(opt.grid);
+    const core::GridGeometry grid = ParseGrid(opt.grid, "--grid");
     sim::GroundTruthOptions options;
     options.rule =
         opt.rule == "centre" ? sim::TruthRule::kCellCentre : sim::TruthRule::kHighestInCell;
