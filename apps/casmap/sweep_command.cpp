@@ -228,6 +228,12 @@ void RunSweep(const SweepOptions& opt, const CommonOptions& common) {
         if (axes[i].name == "speed") {
             speed_axis = static_cast<int>(i);
             speeds = axes[i].values;
+            for (const double v : speeds) {
+                if (!(v > 0.0 && v <= rig::TableLimits::kMaxSpeedMS)) {
+                    throw MakeInputError("", "--set", "speed=" + FormatNumber(v),
+                                         "allowed: > 0 and <= 1 m/s (the table's limit)");
+                }
+            }
         }
         if (axes[i].name == "a") {
             a_axis = static_cast<int>(i);
