@@ -2,9 +2,9 @@
 // never-observed cells, the weighted median's samples) are in docs/paper-notes.md.
 //
 // Speed: window statistics are separable sums and maxima over plain float rows (the compiler
-// vectorises them); the weighted median of the Fig. 5 skeleton runs for 8 filled pixels at a
-// time through a min/max network (see FastSkeletonMedian). Every pixel's result depends only
-// on the unfiltered input, in a fixed order of operations: the output is deterministic.
+// vectorises them); the weighted median of the Fig. 5 skeleton is mapper/skeleton_median.cpp. Every
+// pixel's result depends only on the unfiltered input, in a fixed order of operations: the output
+// is deterministic.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,12 +13,9 @@
 #include <utility>
 #include <vector>
 
-#if defined(__x86_64__) && defined(__GNUC__)
-#include <immintrin.h>
-#endif
-
 #include "core/input_error.hpp"
 #include "mapper/filters.hpp"
+#include "mapper/skeleton_median.hpp"
 
 // The hot row loops are compiled twice, for AVX2 and the baseline, and picked at load time
 // (GCC function multi-versioning). Both run the same element-wise operations in the same
@@ -31,207 +28,6 @@
 
 namespace casmap::mapper {
 namespace {
-
-using Comparator = std::pair<int, int>;
-
-// Batcher's odd-even merge sort on wires [lo, hi] (inclusive), hi - lo + 1 a power of two.
-void OddEvenMerge(int lo, int hi, int r, std::vector<Comparator>& out) {
-    const int step = r * 2;
-    if (step < hi - lo) {
-        OddEvenMerge(lo, hi, step, out);
-        OddEvenMerge(lo + r, hi, step, out);
-        for (int i = lo + r; i < hi - r; i += step) {
-            out.emplace_back(i, i + r);
-        }
-    } else {
-        out.emplace_back(lo, lo + r);
-    }
-}
-
-void OddEvenMergeSort(int lo, int hi, std::vector<Comparator>& out) {
-    if (hi - lo >= 1) {
-        const int mid = lo + (hi - lo) / 2;
-        OddEvenMergeSort(lo, mid, out);
-        OddEvenMergeSort(mid + 1, hi, out);
-        OddEvenMerge(lo, hi, 1, out);
-    }
-}
-
-// A min/max network that puts ranks [first, last] of n inputs in place: Batcher's network
-// for the next power of two with the (+inf) padding wires dropped, then pruned to the
-// comparators the wanted outputs depend on.
-std::vector<Comparator> SelectionNetwork(int n, int first, int last) {
-    int size = 1;
-    while (size < n) {
-        size *= 2;
-    }
-    std::vector<Comparator> all;
-    OddEvenMergeSort(0, size - 1, all);
-    std::vector<bool> needed(static_cast<std::size_t>(size), false);
-    for (int w = first; w <= last; ++w) {
-        needed[static_cast<std::size_t>(w)] = true;
-    }
-    std::vector<Comparator> kept;
-    for (auto it = all.rbegin(); it != all.rend(); ++it) {
-        const auto [a, b] = *it;
-        if (b >= n) {
-            continue;  // the padding wire holds +inf: a no-op
-        }
-        if (needed[static_cast<std::size_t>(a)] || needed[static_cast<std::size_t>(b)]) {
-            needed[static_cast<std::size_t>(a)] = true;
-            needed[static_cast<std::size_t>(b)] = true;
-            kept.push_back(*it);
-        }
-    }
-    std::reverse(kept.begin(), kept.end());
-    return kept;
-}
-
-constexpr int kLanes = 8;
-constexpr int kOuter = 20;  // weight-2 cells of Fig. 5
-constexpr int kInner = 5;   // weight-1 cells: the centre and its four direct neighbours
-
-// kLanes floats processed together (GCC/Clang vector extension).
-typedef float Lanes __attribute__((vector_size(kLanes * sizeof(float))));
-
-#if defined(__x86_64__) && defined(__GNUC__)
-// minps/maxps, for AVX2 (8 lanes at once) or SSE (two halves); picked once at run time.
-__attribute__((target("avx2"))) void ApplyNetworkAvx2(const std::vector<Comparator>& net,
-                                                      Lanes* v) {
-    auto* p = reinterpret_cast<float*>(v);
-    for (const auto& [a, b] : net) {
-        float* pa = p + a * kLanes;
-        float* pb = p + b * kLanes;
-        const __m256 x = _mm256_loadu_ps(pa);
-        const __m256 y = _mm256_loadu_ps(pb);
-        _mm256_storeu_ps(pa, _mm256_min_ps(x, y));
-        _mm256_storeu_ps(pb, _mm256_max_ps(x, y));
-    }
-}
-
-void ApplyNetworkSse(const std::vector<Comparator>& net, Lanes* v) {
-    auto* p = reinterpret_cast<float*>(v);
-    for (const auto& [a, b] : net) {
-        for (int half = 0; half < kLanes; half += 4) {
-            float* pa = p + a * kLanes + half;
-            float* pb = p + b * kLanes + half;
-            const __m128 x = _mm_loadu_ps(pa);
-            const __m128 y = _mm_loadu_ps(pb);
-            _mm_storeu_ps(pa, _mm_min_ps(x, y));
-            _mm_storeu_ps(pb, _mm_max_ps(x, y));
-        }
-    }
-}
-
-bool UseAvx2() {
-    static const bool avx2 = __builtin_cpu_supports("avx2") != 0;
-    return avx2;
-}
-
-void ApplyNetwork(const std::vector<Comparator>& net, Lanes* v) {
-    if (UseAvx2()) {
-        ApplyNetworkAvx2(net, v);
-    } else {
-        ApplyNetworkSse(net, v);
-    }
-}
-#else
-void ApplyNetwork(const std::vector<Comparator>& net, Lanes* v) {
-    for (const auto& [a, b] : net) {
-        const Lanes x = v[a];
-        const Lanes y = v[b];
-        v[a] = y < x ? y : x;  // min and max as minps/maxps define them
-        v[b] = y < x ? x : y;
-    }
-}
-#endif
-
-// The 23rd of the 45 Fig. 5 samples for k = 2, empty cells included. With O the 20 outer
-// values sorted (each counted twice) and I the 5 inner ones sorted, the k-th of the union of
-// two sorted lists is min_j max(D_(k-j), I_j); for k = 23 the non-dominated terms leave
-// min(o12, max(o11, i1), max(o10, i3), max(o9, i5)) (1-based ranks).
-void FastSkeletonMedian(const float* h,
-                        int cols,
-                        const std::vector<std::size_t>& fills,
-                        float* out) {
-    static const std::vector<Comparator> outer_net = SelectionNetwork(kOuter, 8, 11);
-    static const std::vector<Comparator> inner_net = SelectionNetwork(kInner, 0, 4);
-    std::array<std::ptrdiff_t, kOuter> outer_off{};
-    std::array<std::ptrdiff_t, kInner> inner_off{};
-    int no = 0;
-    int ni = 0;
-    for (int di = -2; di <= 2; ++di) {
-        for (int dj = -2; dj <= 2; ++dj) {
-            const std::ptrdiff_t off = static_cast<std::ptrdiff_t>(di) * cols + dj;
-            if (std::abs(di) + std::abs(dj) <= 1) {
-                inner_off[static_cast<std::size_t>(ni++)] = off;
-            } else {
-                outer_off[static_cast<std::size_t>(no++)] = off;
-            }
-        }
-    }
-    std::array<Lanes, kOuter> o{};
-    std::array<Lanes, kInner> in{};
-    for (std::size_t b = 0; b < fills.size(); b += kLanes) {
-        for (int l = 0; l < kLanes; ++l) {
-            const std::size_t idx =
-                fills[std::min(b + static_cast<std::size_t>(l), fills.size() - 1)];
-            const float* centre = h + idx;
-            for (int s = 0; s < kOuter; ++s) {
-                o[static_cast<std::size_t>(s)][l] = centre[outer_off[static_cast<std::size_t>(s)]];
-            }
-            for (int s = 0; s < kInner; ++s) {
-                in[static_cast<std::size_t>(s)][l] = centre[inner_off[static_cast<std::size_t>(s)]];
-            }
-        }
-        ApplyNetwork(outer_net, o.data());
-        ApplyNetwork(inner_net, in.data());
-        const Lanes t1 = o[10] < in[0] ? in[0] : o[10];
-        const Lanes t2 = o[9] < in[2] ? in[2] : o[9];
-        const Lanes t3 = o[8] < in[4] ? in[4] : o[8];
-        Lanes m = t1 < o[11] ? t1 : o[11];
-        m = t2 < m ? t2 : m;
-        m = t3 < m ? t3 : m;
-        for (int l = 0; l < kLanes && b + static_cast<std::size_t>(l) < fills.size(); ++l) {
-            out[fills[b + static_cast<std::size_t>(l)]] = m[l];
-        }
-    }
-}
-
-// Any k, either wm_empty mode: collect the skeleton's samples and select the lower median.
-void GenericSkeletonMedian(const float* h,
-                           const float* c,
-                           int cols,
-                           int k,
-                           WmEmpty wm_empty,
-                           const std::vector<std::size_t>& fills,
-                           float* out) {
-    std::vector<std::ptrdiff_t> offsets;
-    for (int di = -k; di <= k; ++di) {
-        for (int dj = -k; dj <= k; ++dj) {
-            const int weight = (std::abs(di) + std::abs(dj) <= 1) ? 1 : 2;  // Fig. 5
-            offsets.insert(offsets.end(), static_cast<std::size_t>(weight),
-                           static_cast<std::ptrdiff_t>(di) * cols + dj);
-        }
-    }
-    std::vector<float> samples;
-    samples.reserve(offsets.size());
-    for (const std::size_t idx : fills) {
-        samples.clear();
-        for (const std::ptrdiff_t off : offsets) {
-            const auto at = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(idx) + off);
-            if (wm_empty == WmEmpty::kInclude || c[at] != 0.0F) {
-                samples.push_back(h[at]);
-            }
-        }
-        if (samples.empty()) {
-            continue;  // nothing observed around: the cell keeps its value (0)
-        }
-        const auto mid = samples.begin() + static_cast<std::ptrdiff_t>((samples.size() - 1) / 2);
-        std::nth_element(samples.begin(), mid, samples.end());
-        out[idx] = *mid;
-    }
-}
 
 // Window statistics of one output row, per column j in [k, cols - k).
 struct RowStats {
@@ -473,6 +269,45 @@ void ClassifyRowGeneral(const float* abs_h,
     }
 }
 
+// Output = input, every pixel in the border class until classified.
+void ResetOutput(const core::MapF& elevation, FilterResult& out) {
+    out.elevation.rows = elevation.rows;
+    out.elevation.cols = elevation.cols;
+    out.elevation.data.assign(elevation.data.begin(), elevation.data.end());
+    out.classes.rows = elevation.rows;
+    out.classes.cols = elevation.cols;
+    out.classes.data.assign(elevation.data.size(), static_cast<std::uint8_t>(PixelClass::kBorder));
+}
+
+Thresholds MakeThresholds(const CasParams& p,
+                          const std::vector<float>& abs_h,
+                          const core::MapF& certainty) {
+    const bool global = p.normalise == Normalise::kGlobal;
+    Thresholds t{};
+    t.A = static_cast<float>(p.EffectiveA());
+    t.G = static_cast<float>(p.EffectiveG());
+    t.h_sum_min = static_cast<float>(p.h_sum_min);
+    t.global_max_h = global ? *std::max_element(abs_h.begin(), abs_h.end()) : 0.0F;
+    t.global_max_c =
+        global ? *std::max_element(certainty.data.begin(), certainty.data.end()) : 0.0F;
+    t.global = global;
+    return t;
+}
+
+// Appends the row's filled pixels to fills[n..] without branching; returns the new count.
+std::size_t AppendFills(const std::uint8_t* cls,
+                        std::size_t row_off,
+                        std::size_t first,
+                        std::size_t last,
+                        std::vector<std::size_t>& fills,
+                        std::size_t n) {
+    for (std::size_t j = first; j < last; ++j) {
+        fills[n] = row_off + j;
+        n += cls[j] == static_cast<std::uint8_t>(PixelClass::kFilled) ? 1U : 0U;
+    }
+    return n;
+}
+
 }  // namespace
 
 void CasFilterInto(const core::MapF& elevation,
@@ -486,69 +321,44 @@ void CasFilterInto(const core::MapF& elevation,
                                  std::to_string(elevation.rows) + "x" +
                                  std::to_string(elevation.cols));
     }
-    const int rows = elevation.rows;
-    const int cols = elevation.cols;
+    ResetOutput(elevation, out);
     const int k = p.k;
-    out.elevation.rows = rows;
-    out.elevation.cols = cols;
-    out.elevation.data.assign(elevation.data.begin(), elevation.data.end());
-    out.classes.rows = rows;
-    out.classes.cols = cols;
-    out.classes.data.assign(elevation.data.size(), static_cast<std::uint8_t>(PixelClass::kBorder));
-    if (rows < 2 * k + 1 || cols < 2 * k + 1) {
+    if (elevation.rows < 2 * k + 1 || elevation.cols < 2 * k + 1) {
         return;
     }
-    const auto ucols = static_cast<std::size_t>(cols);
-    const auto uk = static_cast<std::size_t>(k);
+    const auto cols = static_cast<std::size_t>(elevation.cols);
+    const auto first = static_cast<std::size_t>(k);
+    const std::size_t last = cols - first;
     // Scratch reused between calls on the same thread (no page faults on every call).
     thread_local std::vector<float> abs_h;
     thread_local std::vector<std::size_t> fills;
     abs_h.resize(elevation.data.size());
     AbsInto(elevation.data.data(), abs_h.size(), abs_h.data());
-    const bool global = p.normalise == Normalise::kGlobal;
-    const float global_max_h = global ? *std::max_element(abs_h.begin(), abs_h.end()) : 0.0F;
-    const float global_max_c =
-        global ? *std::max_element(certainty.data.begin(), certainty.data.end()) : 0.0F;
-    const Thresholds t{static_cast<float>(p.EffectiveA()),
-                       static_cast<float>(p.EffectiveG()),
-                       static_cast<float>(p.h_sum_min),
-                       global_max_h,
-                       global_max_c,
-                       p.normalise == Normalise::kGlobal};
-    const bool general = p.gs_mode == GsMode::kVariance || p.e_term;
-    const float* h = elevation.data.data();
-    const float* c = certainty.data.data();
-    float* y = out.elevation.data.data();
-    RowStats s(ucols);
     fills.resize(elevation.data.size());
     std::size_t n_fills = 0;
-    for (int i = k; i < rows - k; ++i) {
-        ComputeRowStats(abs_h.data(), c, ucols, i - k, k, s);
-        const std::size_t row_off = static_cast<std::size_t>(i) * ucols;
+    const Thresholds t = MakeThresholds(p, abs_h, certainty);
+    const bool general = p.gs_mode == GsMode::kVariance || p.e_term;
+    const float* c = certainty.data.data();
+    float* y = out.elevation.data.data();
+    RowStats s(cols);
+    for (int i = k; i < elevation.rows - k; ++i) {
+        ComputeRowStats(abs_h.data(), c, cols, i - k, k, s);
+        const std::size_t row_off = static_cast<std::size_t>(i) * cols;
         std::uint8_t* cls = out.classes.data.data() + row_off;
         const RowInputs in{c + row_off, s.win_c.data(), s.win_h.data(), s.win_max.data()};
         if (general) {
-            ClassifyRowGeneral(abs_h.data(), c, ucols, row_off, in, p, t, uk, ucols - uk,
-                               y + row_off, cls);
+            ClassifyRowGeneral(abs_h.data(), c, cols, row_off, in, p, t, first, last, y + row_off,
+                               cls);
+        } else if (t.global) {
+            ClassifyRowSum<true>(in, t, first, last, y + row_off, cls);
         } else {
-            if (t.global) {
-                ClassifyRowSum<true>(in, t, uk, ucols - uk, y + row_off, cls);
-            } else {
-                ClassifyRowSum<false>(in, t, uk, ucols - uk, y + row_off, cls);
-            }
+            ClassifyRowSum<false>(in, t, first, last, y + row_off, cls);
         }
-        for (std::size_t j = uk; j < ucols - uk; ++j) {  // branch-free append
-            fills[n_fills] = row_off + j;
-            n_fills += cls[j] == static_cast<std::uint8_t>(PixelClass::kFilled) ? 1U : 0U;
-        }
+        n_fills = AppendFills(cls, row_off, first, last, fills, n_fills);
     }
     fills.resize(n_fills);
-    // The weighted median reads the unfiltered map h, so filling after the loop changes nothing.
-    if (k == 2 && p.wm_empty == WmEmpty::kInclude) {
-        FastSkeletonMedian(h, cols, fills, y);
-    } else {
-        GenericSkeletonMedian(h, c, cols, k, p.wm_empty, fills, y);
-    }
+    // The weighted median reads the unfiltered map, so filling after the loop changes nothing.
+    SkeletonMedian(elevation.data.data(), c, elevation.cols, k, p.wm_empty, fills, y);
 }
 
 FilterResult CasFilter(const core::MapF& elevation,

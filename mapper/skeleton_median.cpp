@@ -1,0 +1,237 @@
+// Weighted median of the CAS filter's Fig. 5 skeleton. For k = 2 with empty cells included
+// (the paper's form) 8 pixels go through a min/max selection network at once (AVX2 or SSE,
+// chosen at run time; both give the same result); otherwise the samples are collected and
+// std::nth_element selects.
+#include "mapper/skeleton_median.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstdlib>
+#include <utility>
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
+namespace casmap::mapper {
+namespace {
+
+using Comparator = std::pair<int, int>;
+
+// Batcher's odd-even merge sort on wires [lo, hi] (inclusive), hi - lo + 1 a power of two.
+void OddEvenMerge(int lo, int hi, int r, std::vector<Comparator>& out) {
+    const int step = r * 2;
+    if (step < hi - lo) {
+        OddEvenMerge(lo, hi, step, out);
+        OddEvenMerge(lo + r, hi, step, out);
+        for (int i = lo + r; i < hi - r; i += step) {
+            out.emplace_back(i, i + r);
+        }
+    } else {
+        out.emplace_back(lo, lo + r);
+    }
+}
+
+void OddEvenMergeSort(int lo, int hi, std::vector<Comparator>& out) {
+    if (hi - lo >= 1) {
+        const int mid = lo + (hi - lo) / 2;
+        OddEvenMergeSort(lo, mid, out);
+        OddEvenMergeSort(mid + 1, hi, out);
+        OddEvenMerge(lo, hi, 1, out);
+    }
+}
+
+// A min/max network that puts ranks [first, last] of n inputs in place: Batcher's network
+// for the next power of two with the (+inf) padding wires dropped, then pruned to the
+// comparators the wanted outputs depend on.
+std::vector<Comparator> SelectionNetwork(int n, int first, int last) {
+    int size = 1;
+    while (size < n) {
+        size *= 2;
+    }
+    std::vector<Comparator> all;
+    OddEvenMergeSort(0, size - 1, all);
+    std::vector<bool> needed(static_cast<std::size_t>(size), false);
+    for (int w = first; w <= last; ++w) {
+        needed[static_cast<std::size_t>(w)] = true;
+    }
+    std::vector<Comparator> kept;
+    for (auto it = all.rbegin(); it != all.rend(); ++it) {
+        const auto [a, b] = *it;
+        if (b >= n) {
+            continue;  // the padding wire holds +inf: a no-op
+        }
+        if (needed[static_cast<std::size_t>(a)] || needed[static_cast<std::size_t>(b)]) {
+            needed[static_cast<std::size_t>(a)] = true;
+            needed[static_cast<std::size_t>(b)] = true;
+            kept.push_back(*it);
+        }
+    }
+    std::reverse(kept.begin(), kept.end());
+    return kept;
+}
+
+constexpr int kLanes = 8;
+constexpr int kOuter = 20;  // weight-2 cells of Fig. 5
+constexpr int kInner = 5;   // weight-1 cells: the centre and its four direct neighbours
+
+// kLanes floats processed together (GCC/Clang vector extension).
+typedef float Lanes __attribute__((vector_size(kLanes * sizeof(float))));
+
+#if defined(__x86_64__) && defined(__GNUC__)
+// minps/maxps, for AVX2 (8 lanes at once) or SSE (two halves); picked once at run time.
+__attribute__((target("avx2"))) void ApplyNetworkAvx2(const std::vector<Comparator>& net,
+                                                      Lanes* v) {
+    auto* p = reinterpret_cast<float*>(v);
+    for (const auto& [a, b] : net) {
+        float* pa = p + a * kLanes;
+        float* pb = p + b * kLanes;
+        const __m256 x = _mm256_loadu_ps(pa);
+        const __m256 y = _mm256_loadu_ps(pb);
+        _mm256_storeu_ps(pa, _mm256_min_ps(x, y));
+        _mm256_storeu_ps(pb, _mm256_max_ps(x, y));
+    }
+}
+
+void ApplyNetworkSse(const std::vector<Comparator>& net, Lanes* v) {
+    auto* p = reinterpret_cast<float*>(v);
+    for (const auto& [a, b] : net) {
+        for (int half = 0; half < kLanes; half += 4) {
+            float* pa = p + a * kLanes + half;
+            float* pb = p + b * kLanes + half;
+            const __m128 x = _mm_loadu_ps(pa);
+            const __m128 y = _mm_loadu_ps(pb);
+            _mm_storeu_ps(pa, _mm_min_ps(x, y));
+            _mm_storeu_ps(pb, _mm_max_ps(x, y));
+        }
+    }
+}
+
+bool UseAvx2() {
+    static const bool avx2 = __builtin_cpu_supports("avx2") != 0;
+    return avx2;
+}
+
+void ApplyNetwork(const std::vector<Comparator>& net, Lanes* v) {
+    if (UseAvx2()) {
+        ApplyNetworkAvx2(net, v);
+    } else {
+        ApplyNetworkSse(net, v);
+    }
+}
+#else
+void ApplyNetwork(const std::vector<Comparator>& net, Lanes* v) {
+    for (const auto& [a, b] : net) {
+        const Lanes x = v[a];
+        const Lanes y = v[b];
+        v[a] = y < x ? y : x;  // min and max as minps/maxps define them
+        v[b] = y < x ? x : y;
+    }
+}
+#endif
+
+// The 23rd of the 45 Fig. 5 samples for k = 2, empty cells included. With O the 20 outer
+// values sorted (each counted twice) and I the 5 inner ones sorted, the k-th of the union of
+// two sorted lists is min_j max(D_(k-j), I_j); for k = 23 the non-dominated terms leave
+// min(o12, max(o11, i1), max(o10, i3), max(o9, i5)) (1-based ranks).
+void FastSkeletonMedian(const float* h,
+                        int cols,
+                        const std::vector<std::size_t>& fills,
+                        float* out) {
+    static const std::vector<Comparator> outer_net = SelectionNetwork(kOuter, 8, 11);
+    static const std::vector<Comparator> inner_net = SelectionNetwork(kInner, 0, 4);
+    std::array<std::ptrdiff_t, kOuter> outer_off{};
+    std::array<std::ptrdiff_t, kInner> inner_off{};
+    int no = 0;
+    int ni = 0;
+    for (int di = -2; di <= 2; ++di) {
+        for (int dj = -2; dj <= 2; ++dj) {
+            const std::ptrdiff_t off = static_cast<std::ptrdiff_t>(di) * cols + dj;
+            if (std::abs(di) + std::abs(dj) <= 1) {
+                inner_off[static_cast<std::size_t>(ni++)] = off;
+            } else {
+                outer_off[static_cast<std::size_t>(no++)] = off;
+            }
+        }
+    }
+    std::array<Lanes, kOuter> o{};
+    std::array<Lanes, kInner> in{};
+    for (std::size_t b = 0; b < fills.size(); b += kLanes) {
+        for (int l = 0; l < kLanes; ++l) {
+            const std::size_t idx =
+                fills[std::min(b + static_cast<std::size_t>(l), fills.size() - 1)];
+            const float* centre = h + idx;
+            for (int s = 0; s < kOuter; ++s) {
+                o[static_cast<std::size_t>(s)][l] = centre[outer_off[static_cast<std::size_t>(s)]];
+            }
+            for (int s = 0; s < kInner; ++s) {
+                in[static_cast<std::size_t>(s)][l] = centre[inner_off[static_cast<std::size_t>(s)]];
+            }
+        }
+        ApplyNetwork(outer_net, o.data());
+        ApplyNetwork(inner_net, in.data());
+        const Lanes t1 = o[10] < in[0] ? in[0] : o[10];
+        const Lanes t2 = o[9] < in[2] ? in[2] : o[9];
+        const Lanes t3 = o[8] < in[4] ? in[4] : o[8];
+        Lanes m = t1 < o[11] ? t1 : o[11];
+        m = t2 < m ? t2 : m;
+        m = t3 < m ? t3 : m;
+        for (int l = 0; l < kLanes && b + static_cast<std::size_t>(l) < fills.size(); ++l) {
+            out[fills[b + static_cast<std::size_t>(l)]] = m[l];
+        }
+    }
+}
+
+// Any k, either wm_empty mode: collect the skeleton's samples and select the lower median.
+void GenericSkeletonMedian(const float* h,
+                           const float* c,
+                           int cols,
+                           int k,
+                           WmEmpty wm_empty,
+                           const std::vector<std::size_t>& fills,
+                           float* out) {
+    std::vector<std::ptrdiff_t> offsets;
+    for (int di = -k; di <= k; ++di) {
+        for (int dj = -k; dj <= k; ++dj) {
+            const int weight = (std::abs(di) + std::abs(dj) <= 1) ? 1 : 2;  // Fig. 5
+            offsets.insert(offsets.end(), static_cast<std::size_t>(weight),
+                           static_cast<std::ptrdiff_t>(di) * cols + dj);
+        }
+    }
+    std::vector<float> samples;
+    samples.reserve(offsets.size());
+    for (const std::size_t idx : fills) {
+        samples.clear();
+        for (const std::ptrdiff_t off : offsets) {
+            const auto at = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(idx) + off);
+            if (wm_empty == WmEmpty::kInclude || c[at] != 0.0F) {
+                samples.push_back(h[at]);
+            }
+        }
+        if (samples.empty()) {
+            continue;  // nothing observed around: the cell keeps its value (0)
+        }
+        const auto mid = samples.begin() + static_cast<std::ptrdiff_t>((samples.size() - 1) / 2);
+        std::nth_element(samples.begin(), mid, samples.end());
+        out[idx] = *mid;
+    }
+}
+
+}  // namespace
+
+void SkeletonMedian(const float* h,
+                    const float* c,
+                    int cols,
+                    int k,
+                    WmEmpty wm_empty,
+                    const std::vector<std::size_t>& fills,
+                    float* out) {
+    if (k == 2 && wm_empty == WmEmpty::kInclude) {
+        FastSkeletonMedian(h, cols, fills, out);
+    } else {
+        GenericSkeletonMedian(h, c, cols, k, wm_empty, fills, out);
+    }
+}
+
+}  // namespace casmap::mapper
