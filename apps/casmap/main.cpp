@@ -25,6 +25,8 @@ void AddMixedPixelsCommand(CLI::App& app, CommonOptions& common);
 #endif
 void AddServeCommand(CLI::App& app, CommonOptions& common);
 void AddRecordCommand(CLI::App& app, CommonOptions& common);
+void AddFilterCommand(CLI::App& app, CommonOptions& common);
+void AddDemoCommand(CLI::App& app, CommonOptions& common);
 // END COMMAND DECLARATIONS
 }  // namespace casmap::app
 
@@ -49,6 +51,8 @@ int main(int argc, char** argv) {
 #endif
     AddServeCommand(app, common);
     AddRecordCommand(app, common);
+    AddFilterCommand(app, common);
+    AddDemoCommand(app, common);
     // END COMMAND REGISTRATION
     try {
         app.parse(argc, argv);
