@@ -2,7 +2,8 @@
 
 // What `casmap bench` and `casmap sweep` report: scores per run and filter, bench.json, the
 // Fig. 8-style chart, the Table II-style table, the Fig. 7-style sheets, the terminal PI table
-// and the sweep heat map. Pure formatting and drawing: no simulation here.
+// and the sweep heat map. Formatting in benchmark_report.cpp, drawing in benchmark_charts.cpp; no
+// simulation here.
 
 #include <cstdint>
 #include <filesystem>
@@ -48,6 +49,9 @@ struct SheetMaps {
     core::MapF truth;
     std::map<std::string, core::MapF> filtered;  // keyed by BenchFilterNames()
 };
+
+/// "CAS", "Wiener", "Averaging", "Median", "CWM" for the names above.
+[[nodiscard]] std::string FilterDisplayName(const std::string& name);
 
 /// JSON number (shortest round-trip form) or null for NaN/inf.
 [[nodiscard]] std::string JsonNumber(double value);
