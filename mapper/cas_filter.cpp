@@ -7,6 +7,7 @@
 // is deterministic.
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -294,16 +295,34 @@ Thresholds MakeThresholds(const CasParams& p,
     return t;
 }
 
-// Appends the row's filled pixels to fills[n..] without branching; returns the new count.
+// Appends the row's filled pixels to fills[n..]; returns the new count. Eight class bytes at a
+// time: a word test finds the (few) bytes equal to kFilled, so the cost follows the fills.
 std::size_t AppendFills(const std::uint8_t* cls,
                         std::size_t row_off,
                         std::size_t first,
                         std::size_t last,
                         std::vector<std::size_t>& fills,
                         std::size_t n) {
-    for (std::size_t j = first; j < last; ++j) {
-        fills[n] = row_off + j;
-        n += cls[j] == static_cast<std::uint8_t>(PixelClass::kFilled) ? 1U : 0U;
+    constexpr auto kFill = static_cast<std::uint8_t>(PixelClass::kFilled);
+    std::size_t j = first;
+    if constexpr (std::endian::native == std::endian::little) {
+        constexpr std::uint64_t kLow7 = 0x7F7F7F7F7F7F7F7FULL;
+        constexpr std::uint64_t kFillBytes = 0x0101010101010101ULL * kFill;
+        for (; j + 8 <= last; j += 8) {
+            std::uint64_t word = 0;
+            std::memcpy(&word, cls + j, sizeof(word));
+            const std::uint64_t x = word ^ kFillBytes;  // zero bytes where the class is kFilled
+            std::uint64_t hits = ~(((x & kLow7) + kLow7) | x | kLow7);  // 0x80 per zero byte
+            while (hits != 0) {
+                fills[n++] = row_off + j + static_cast<std::size_t>(std::countr_zero(hits)) / 8;
+                hits &= hits - 1;
+            }
+        }
+    }
+    for (; j < last; ++j) {
+        if (cls[j] == kFill) {
+            fills[n++] = row_off + j;
+        }
     }
     return n;
 }

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <utility>
+#include <vector>
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
@@ -131,6 +132,116 @@ void ApplyNetwork(const std::vector<Comparator>& net, Lanes* v) {
 }
 #endif
 
+#if defined(__x86_64__) && defined(__GNUC__)
+// The same networks as compile-time tables, so the AVX2 kernel below is straight-line code
+// whose 25 vectors the compiler keeps in registers.
+struct FixedNetwork {
+    std::array<Comparator, 256> c{};
+    std::size_t size = 0;
+};
+
+constexpr void AddComparator(FixedNetwork& n, int a, int b) { n.c[n.size++] = Comparator{a, b}; }
+
+constexpr void FixedMerge(int lo, int hi, int r, FixedNetwork& out) {
+    const int step = r * 2;
+    if (step < hi - lo) {
+        FixedMerge(lo, hi, step, out);
+        FixedMerge(lo + r, hi, step, out);
+        for (int i = lo + r; i < hi - r; i += step) {
+            AddComparator(out, i, i + r);
+        }
+    } else {
+        AddComparator(out, lo, lo + r);
+    }
+}
+
+constexpr void FixedSort(int lo, int hi, FixedNetwork& out) {
+    if (hi - lo >= 1) {
+        const int mid = lo + (hi - lo) / 2;
+        FixedSort(lo, mid, out);
+        FixedSort(mid + 1, hi, out);
+        FixedMerge(lo, hi, 1, out);
+    }
+}
+
+// As SelectionNetwork, at compile time.
+constexpr FixedNetwork FixedSelection(int n, int first, int last) {
+    int size = 1;
+    while (size < n) {
+        size *= 2;
+    }
+    FixedNetwork all;
+    FixedSort(0, size - 1, all);
+    std::array<bool, 64> needed{};
+    for (int w = first; w <= last; ++w) {
+        needed[static_cast<std::size_t>(w)] = true;
+    }
+    FixedNetwork kept;
+    for (std::size_t i = all.size; i-- > 0;) {
+        const int a = all.c[i].first;
+        const int b = all.c[i].second;
+        if (b < n && (needed[static_cast<std::size_t>(a)] || needed[static_cast<std::size_t>(b)])) {
+            needed[static_cast<std::size_t>(a)] = true;
+            needed[static_cast<std::size_t>(b)] = true;
+            AddComparator(kept, a, b);
+        }
+    }
+    FixedNetwork out;
+    for (std::size_t i = kept.size; i-- > 0;) {
+        AddComparator(out, kept.c[i].first, kept.c[i].second);
+    }
+    return out;
+}
+
+inline constexpr FixedNetwork kOuterNet = FixedSelection(20, 8, 11);
+inline constexpr FixedNetwork kInnerNet = FixedSelection(5, 0, 4);
+
+__attribute__((target("avx2"), always_inline)) inline void MinMax(__m256& a, __m256& b) {
+    const __m256 lo = _mm256_min_ps(a, b);
+    b = _mm256_max_ps(a, b);
+    a = lo;
+}
+
+template <const FixedNetwork& kNet, std::size_t... I>
+__attribute__((target("avx2"), always_inline)) inline void ApplyFixed(__m256* v,
+                                                                      std::index_sequence<I...>) {
+    (MinMax(v[kNet.c[I].first], v[kNet.c[I].second]), ...);
+}
+
+// Eight filled pixels: gather their 25 samples, select, and the closed form below.
+__attribute__((target("avx2"))) void SkeletonBatchAvx2(const float* h,
+                                                       const std::size_t* idx,
+                                                       const std::ptrdiff_t* outer_off,
+                                                       const std::ptrdiff_t* inner_off,
+                                                       float* result) {
+    __m256 o[kOuter];
+    __m256 in[kInner];
+    const float* p0 = h + idx[0];
+    const float* p1 = h + idx[1];
+    const float* p2 = h + idx[2];
+    const float* p3 = h + idx[3];
+    const float* p4 = h + idx[4];
+    const float* p5 = h + idx[5];
+    const float* p6 = h + idx[6];
+    const float* p7 = h + idx[7];
+    for (int s = 0; s < kOuter; ++s) {
+        const std::ptrdiff_t d = outer_off[s];
+        o[s] = _mm256_setr_ps(p0[d], p1[d], p2[d], p3[d], p4[d], p5[d], p6[d], p7[d]);
+    }
+    for (int s = 0; s < kInner; ++s) {
+        const std::ptrdiff_t d = inner_off[s];
+        in[s] = _mm256_setr_ps(p0[d], p1[d], p2[d], p3[d], p4[d], p5[d], p6[d], p7[d]);
+    }
+    ApplyFixed<kOuterNet>(o, std::make_index_sequence<kOuterNet.size>{});
+    ApplyFixed<kInnerNet>(in, std::make_index_sequence<kInnerNet.size>{});
+    const __m256 t1 = _mm256_max_ps(o[10], in[0]);
+    const __m256 t2 = _mm256_max_ps(o[9], in[2]);
+    const __m256 t3 = _mm256_max_ps(o[8], in[4]);
+    const __m256 m = _mm256_min_ps(_mm256_min_ps(o[11], t1), _mm256_min_ps(t2, t3));
+    _mm256_storeu_ps(result, m);
+}
+#endif
+
 // The 23rd of the 45 Fig. 5 samples for k = 2, empty cells included. With O the 20 outer
 // values sorted (each counted twice) and I the 5 inner ones sorted, the k-th of the union of
 // two sorted lists is min_j max(D_(k-j), I_j); for k = 23 the non-dominated terms leave
@@ -155,6 +266,22 @@ void FastSkeletonMedian(const float* h,
             }
         }
     }
+#if defined(__x86_64__) && defined(__GNUC__)
+    if (UseAvx2()) {
+        std::array<std::size_t, kLanes> idx{};
+        std::array<float, kLanes> result{};
+        for (std::size_t b = 0; b < fills.size(); b += kLanes) {
+            for (std::size_t l = 0; l < kLanes; ++l) {
+                idx[l] = fills[std::min(b + l, fills.size() - 1)];
+            }
+            SkeletonBatchAvx2(h, idx.data(), outer_off.data(), inner_off.data(), result.data());
+            for (std::size_t l = 0; l < kLanes && b + l < fills.size(); ++l) {
+                out[fills[b + l]] = result[l];
+            }
+        }
+        return;
+    }
+#endif
     std::array<Lanes, kOuter> o{};
     std::array<Lanes, kInner> in{};
     for (std::size_t b = 0; b < fills.size(); b += kLanes) {
