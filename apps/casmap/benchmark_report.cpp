@@ -111,8 +111,8 @@ std::string BenchJson(const std::vector<BenchRun>& runs, double elapsed_s, int t
         const mapper::ClassShares& o = r.cas_classes.observed;
         j += "},\n   \"cas_classes_pct\": {\"mixed\": " + JsonNumber(a.removed_pct) +
              ", \"missing\": " + JsonNumber(a.filled_pct) +
-             ", \"untouched\": " + JsonNumber(a.untouched_pct) +
-             ", \"cells\": " + std::to_string(a.cells) + "}" +
+             ", \"untouched\": " + JsonNumber(a.untouched_pct) + "}" +
+             ", \"cas_processed_cells\": " + std::to_string(a.cells) +
              ",\n   \"cas_classes_observed_pct\": {\"mixed\": " + JsonNumber(o.removed_pct) +
              ", \"missing\": " + JsonNumber(o.filled_pct) +
              ", \"untouched\": " + JsonNumber(o.untouched_pct) +

@@ -88,6 +88,7 @@ for r in d["runs"]:
         assert set(f) >= {"pi", "rmse_m", "spikes", "fill_error_m"}
         assert 0 < f["pi"] < 5 and f["rmse_m"] > 0 and f["spikes"] >= 0
     c = r["cas_classes_pct"]
+    assert set(c) == {"mixed", "missing", "untouched"}, c
     assert abs(c["mixed"] + c["missing"] + c["untouched"] - 100) < 1e-6, c
 print("ok")
 )PY";
