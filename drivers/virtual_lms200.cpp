@@ -359,12 +359,13 @@ struct VirtualLms200::Impl {
         return true;
     }
 
-    void Produce() {
+    /// Queues the next B0 telegram if the line is free; true if one was queued.
+    bool Produce() {
         const bool streaming = op_mode == mode::kStreamAll || op_mode == mode::kStreamPartial;
         if (!streaming || !tx.empty() || parser.InFrame() || stats.source_exhausted) {
-            return;  // a request arriving pauses the stream; the line carries one frame at a time
+            return false;  // a request arriving pauses the stream; one frame at a time
         }
-        QueueNewestScan(false);
+        return QueueNewestScan(false);
     }
 
     void OnParserEvent(ParserEvent e, const Telegram& t) {
@@ -500,8 +501,15 @@ struct VirtualLms200::Impl {
                 continue;
             }
             Receive(now);
-            Produce();
-            Transmit(now);
+            // Behind schedule (the thread was delayed), several telegrams may be due at once:
+            // send them all now rather than one per wake-up, so the delay does not last.
+            for (int i = 0; i < 8 && Produce(); ++i) {
+                Transmit(Clock::now());
+                if (!tx.empty()) {
+                    break;
+                }
+            }
+            Transmit(Clock::now());
             stats.baud = baud;
             stats.operating_mode = op_mode;
             if (stop_when_exhausted && stats.source_exhausted && tx.empty()) {

@@ -14,6 +14,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include "apps/casmap/commands.hpp"
 #include "core/input_error.hpp"
@@ -144,18 +145,41 @@ void RunServe(const ServeOptions& opt, const CommonOptions& common, bool speed_g
     drivers::VirtualLms200 scanner(vc, source);
 
     // The first served sweep fixes the offset between run time and the system clock.
-    std::once_flag poses_written;
+    // The first served sweep fixes the offset between run time and the system clock; the
+    // file is written on another thread so the real-time loop never waits for the disk.
+    std::atomic<bool> have_offset{false};
+    std::atomic<bool> serving_done{false};
+    double offset_s = 0.0;
+    std::thread pose_writer;
     if (!opt.poses_out.empty()) {
         if (run.poses.empty()) {
             throw MakeInputError(what, "--poses-out", opt.poses_out, "the run holds no poses");
         }
         scanner.SetScanObserver([&](const drivers::SentScan& s) {
-            std::call_once(poses_written, [&] {
-                const double offset_s = s.beam0_wall_s - sim_stamps.at(s.index);
+            if (!have_offset) {
+                offset_s = s.beam0_wall_s - sim_stamps.at(s.index);
+                have_offset = true;
+            }
+        });
+        pose_writer = std::thread([&] {
+            while (!have_offset && !serving_done) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(10));
+            }
+            if (have_offset) {
                 io::WriteTextAtomically(opt.poses_out, drivers::PoseFileText(run.poses, offset_s));
-            });
+            }
         });
     }
+    struct JoinOnExit {
+        std::atomic<bool>& done;
+        std::thread& thread;
+        ~JoinOnExit() {
+            done = true;
+            if (thread.joinable()) {
+                thread.join();
+            }
+        }
+    } join_writer{serving_done, pose_writer};
     const ServeSignals signals;
     scanner.Open();
     std::fprintf(stderr,

@@ -128,6 +128,38 @@ TEST(ServeRecord, At500000EverySweepArrivesIntact) {
     EXPECT_EQ(driver.counters().crc_errors, 0U);
 }
 
+TEST(ServeRecord, AStalledScannerThreadCatchesUpWithoutLasting) {
+    NumberedSource source;
+    VirtualLms200Config vc;
+    vc.link_path = LinkPath("stall");
+    VirtualLms200 scanner(vc, source);
+    SentLog log;
+    int stalls = 0;
+    scanner.SetScanObserver([&](const SentScan& s) {
+        log.Record(s);
+        if (s.index == 3 || s.index == 12) {  // 20 ms and 80 ms: within and beyond catch-up
+            std::this_thread::sleep_for(std::chrono::milliseconds(s.index == 3 ? 20 : 80));
+            ++stalls;
+        }
+    });
+    scanner.Start();
+    DriverConfig dc;
+    dc.device = vc.link_path;
+    dc.baud = 500000;
+    Lms200Driver driver(dc);
+    driver.Connect();
+    const Recorded r = Record(driver, 30, 1.0);
+    ASSERT_EQ(r.scans.size(), 30U);
+    EXPECT_EQ(stalls, 2);
+    for (std::size_t i = 0; i < r.scans.size(); ++i) {
+        const std::uint64_t index = r.scans[i].beams[0].raw;
+        // A few telegrams after each stall the line is on the mirror's schedule again.
+        if ((index >= 7 && index <= 12) || index >= 20) {
+            EXPECT_NEAR(r.scans[i].stamp_s, log.Beam0(index), 0.010) << "scan " << index;
+        }
+    }
+}
+
 TEST(ServeRecord, FaultsAreRejectedAndCountedAndTheDriverRecovers) {
     NumberedSource source;
     VirtualLms200Config vc;
