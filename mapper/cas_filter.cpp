@@ -86,7 +86,7 @@ void WindowMax(const float* src, int k, std::size_t n, float* dst) {
 
 // k = 2, fused: each column's five values are read once and the three statistics kept in
 // registers. Same order of additions as the generic path, so the same bits.
-CASMAP_VECTOR_CLONES void RowStatsK2(
+CASMAP_VECTOR_CLONES void ColumnStatsK2(
     const float* abs_h, const float* c, std::size_t cols, int top, RowStats& s) {
     const std::size_t off = static_cast<std::size_t>(top) * cols;
     const float* __restrict h0 = abs_h + off;
@@ -116,6 +116,14 @@ CASMAP_VECTOR_CLONES void RowStatsK2(
         m = h4[j] > m ? h4[j] : m;
         sm[j] = m;
     }
+}
+
+CASMAP_VECTOR_CLONES void RowStatsK2(
+    const float* abs_h, const float* c, std::size_t cols, int top, RowStats& s) {
+    ColumnStatsK2(abs_h, c, cols, top, s);
+    const float* __restrict sc = s.col_c.data();
+    const float* __restrict sh = s.col_h.data();
+    const float* __restrict sm = s.col_max.data();
     float* __restrict wc = s.win_c.data() + 2;
     float* __restrict wh = s.win_h.data() + 2;
     float* __restrict wm = s.win_max.data() + 2;
@@ -199,6 +207,7 @@ CASMAP_VECTOR_CLONES void AbsInto(const float* __restrict src,
 // Eq. 7 for one row in the default form (sum g_s, no E term), written so the compiler can
 // vectorise it: the class of each pixel from its window statistics; removed pixels set to 0.
 struct RowInputs {
+    const float* h;        // elevation row (the unfiltered input)
     const float* c;        // certainty row
     const float* win_c;    // window sums of c
     const float* win_h;    // window sums of |h|
@@ -216,6 +225,7 @@ CASMAP_VECTOR_CLONES void ClassifyRowSum(const RowInputs& in,
                                          std::size_t last,
                                          float* __restrict y,
                                          std::uint8_t* __restrict cls) {
+    const float* __restrict hr = in.h;
     const float* __restrict c = in.c;
     const float* __restrict wc = in.win_c;
     const float* __restrict wh = in.win_h;
@@ -233,7 +243,45 @@ CASMAP_VECTOR_CLONES void ClassifyRowSum(const RowInputs& in,
         const int gc0 = static_cast<int>(wc[j] < G);
         const int removed = static_cast<int>(c[j] <= A) & gs0 & gc0;
         const int fill = (gs0 ^ 1) & static_cast<int>(c[j] == 0.0F);  // excludes removed
-        y[j] = removed != 0 ? 0.0F : y[j];
+        y[j] = removed != 0 ? 0.0F : hr[j];
+        cls[j] = static_cast<std::uint8_t>(removed | (fill << 1));
+    }
+}
+
+// k = 2, default form: the window sums and maximum come straight from the column sums in
+// the classification loop (same order of operations as RowStatsK2's window loops).
+template <bool kGlobal>
+CASMAP_VECTOR_CLONES void ClassifyRowSumK2(const RowInputs& in,
+                                           const RowStats& s,
+                                           const Thresholds& t,
+                                           std::size_t cols,
+                                           float* __restrict y,
+                                           std::uint8_t* __restrict cls) {
+    const float* __restrict hr = in.h;
+    const float* __restrict c = in.c;
+    const float* __restrict sc = s.col_c.data();
+    const float* __restrict sh = s.col_h.data();
+    const float* __restrict sm = s.col_max.data();
+    const int empty_gs0 = 0.0F < t.h_sum_min ? 1 : 0;
+    const float A = t.A;
+    const float G = t.G;
+    const float h_sum_min = t.h_sum_min;
+    const float global_max = t.global_max_h;
+    for (std::size_t j = 2; j + 2 < cols; ++j) {
+        const float wc = (((sc[j - 2] + sc[j - 1]) + sc[j]) + sc[j + 1]) + sc[j + 2];
+        const float wh = (((sh[j - 2] + sh[j - 1]) + sh[j]) + sh[j + 1]) + sh[j + 2];
+        float wm = sm[j - 2];
+        wm = sm[j - 1] > wm ? sm[j - 1] : wm;
+        wm = sm[j] > wm ? sm[j] : wm;
+        wm = sm[j + 1] > wm ? sm[j + 1] : wm;
+        wm = sm[j + 2] > wm ? sm[j + 2] : wm;
+        const float max_h = kGlobal ? global_max : wm;
+        const int gs0 = static_cast<int>(wh < h_sum_min * max_h) |
+                        (static_cast<int>(max_h <= 0.0F) & empty_gs0);
+        const int gc0 = static_cast<int>(wc < G);
+        const int removed = static_cast<int>(c[j] <= A) & gs0 & gc0;
+        const int fill = (gs0 ^ 1) & static_cast<int>(c[j] == 0.0F);
+        y[j] = removed != 0 ? 0.0F : hr[j];
         cls[j] = static_cast<std::uint8_t>(removed | (fill << 1));
     }
 }
@@ -265,19 +313,38 @@ void ClassifyRowGeneral(const float* abs_h,
         }
         const bool removed = (in.c[j] <= t.A) & gs0 & gc0;
         const bool fill = !gs0 & (in.c[j] == 0.0F);
-        y[j] = removed ? 0.0F : y[j];
+        y[j] = removed ? 0.0F : in.h[j];
         cls[j] = removed ? std::uint8_t{1} : (fill ? std::uint8_t{2} : std::uint8_t{0});
     }
 }
 
-// Output = input, every pixel in the border class until classified.
-void ResetOutput(const core::MapF& elevation, FilterResult& out) {
-    out.elevation.rows = elevation.rows;
-    out.elevation.cols = elevation.cols;
-    out.elevation.data.assign(elevation.data.begin(), elevation.data.end());
-    out.classes.rows = elevation.rows;
-    out.classes.cols = elevation.cols;
-    out.classes.data.assign(elevation.data.size(), static_cast<std::uint8_t>(PixelClass::kBorder));
+// Sizes the output and fills the unprocessed border (k cells wide): output = input, class
+// kBorder. The interior is written by the row classification.
+void ResetOutput(const core::MapF& elevation, int k, FilterResult& out) {
+    const int rows = elevation.rows;
+    const int cols = elevation.cols;
+    out.elevation.rows = rows;
+    out.elevation.cols = cols;
+    out.elevation.data.resize(elevation.data.size());
+    out.classes.rows = rows;
+    out.classes.cols = cols;
+    out.classes.data.resize(elevation.data.size());
+    const auto border = static_cast<std::uint8_t>(PixelClass::kBorder);
+    const auto copy = [&](int i, int j0, int j1) {
+        const std::size_t a = static_cast<std::size_t>(i) * static_cast<std::size_t>(cols) +
+                              static_cast<std::size_t>(j0);
+        const auto n = static_cast<std::size_t>(j1 - j0);
+        std::memcpy(out.elevation.data.data() + a, elevation.data.data() + a, n * sizeof(float));
+        std::memset(out.classes.data.data() + a, border, n);
+    };
+    for (int i = 0; i < rows; ++i) {
+        if (i < k || i >= rows - k || cols <= 2 * k) {
+            copy(i, 0, cols);
+        } else {
+            copy(i, 0, k);
+            copy(i, cols - k, cols);
+        }
+    }
 }
 
 Thresholds MakeThresholds(const CasParams& p,
@@ -340,8 +407,8 @@ void CasFilterInto(const core::MapF& elevation,
                                  std::to_string(elevation.rows) + "x" +
                                  std::to_string(elevation.cols));
     }
-    ResetOutput(elevation, out);
     const int k = p.k;
+    ResetOutput(elevation, k, out);
     if (elevation.rows < 2 * k + 1 || elevation.cols < 2 * k + 1) {
         return;
     }
@@ -360,12 +427,24 @@ void CasFilterInto(const core::MapF& elevation,
     const float* c = certainty.data.data();
     float* y = out.elevation.data.data();
     RowStats s(cols);
+    const bool fused = k == 2 && !general;
     for (int i = k; i < elevation.rows - k; ++i) {
-        ComputeRowStats(abs_h.data(), c, cols, i - k, k, s);
+        if (fused) {
+            ColumnStatsK2(abs_h.data(), c, cols, i - k, s);
+        } else {
+            ComputeRowStats(abs_h.data(), c, cols, i - k, k, s);
+        }
         const std::size_t row_off = static_cast<std::size_t>(i) * cols;
         std::uint8_t* cls = out.classes.data.data() + row_off;
-        const RowInputs in{c + row_off, s.win_c.data(), s.win_h.data(), s.win_max.data()};
-        if (general) {
+        const RowInputs in{elevation.data.data() + row_off, c + row_off, s.win_c.data(),
+                           s.win_h.data(), s.win_max.data()};
+        if (fused) {
+            if (t.global) {
+                ClassifyRowSumK2<true>(in, s, t, cols, y + row_off, cls);
+            } else {
+                ClassifyRowSumK2<false>(in, s, t, cols, y + row_off, cls);
+            }
+        } else if (general) {
             ClassifyRowGeneral(abs_h.data(), c, cols, row_off, in, p, t, first, last, y + row_off,
                                cls);
         } else if (t.global) {
