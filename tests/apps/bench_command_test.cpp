@@ -38,7 +38,12 @@ Result Casmap(const std::string& args) {
                  "/scenes/courses");
 }
 
-bool HaveSimulator() { return Shell(std::string(CASMAP_EXE) + " bench --help").code == 0; }
+/// Simulator builds list `bench` among the subcommands (CLI11 answers `casmap X --help` with the
+/// main help and status 0 even when X is unknown, so that cannot tell).
+bool HaveSimulator() {
+    return Shell(std::string(CASMAP_EXE) + " --help").output.find("\n  bench ") !=
+           std::string::npos;
+}
 
 std::string ReadText(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);

@@ -36,7 +36,9 @@ Result Casmap(const std::string& args) {
     return r;
 }
 
-bool HaveSimulator() { return Casmap("simulate --help").code == 0; }
+/// Simulator builds list `simulate` among the subcommands (CLI11 answers `casmap X --help` with
+/// the main help and status 0 even when X is unknown, so that cannot tell).
+bool HaveSimulator() { return Casmap("--help").output.find("\n  simulate ") != std::string::npos; }
 
 std::string ReadBytes(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
