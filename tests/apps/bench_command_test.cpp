@@ -141,6 +141,28 @@ TEST(BenchCommand, BadInputExitsTwoWithOneLineAndNoJson) {
     EXPECT_FALSE(fs::exists(dir / "out" / "bench.json"));
 }
 
+TEST(BenchCommand, KilledBenchLeavesNoHalfWrittenJson) {
+    if (!HaveSimulator()) {
+        GTEST_SKIP() << "built without the simulator";
+    }
+    const fs::path dir = FreshDir("killed");
+    // Killed at some point of its work: no bench.json, or a complete one that parses.
+    const Result r = Shell("timeout -s KILL 0.4 " + std::string(CASMAP_EXE) +
+                           " bench --courses 1-4 --tests T --no-sheets --threads 1 --courses-dir " +
+                           CASMAP_SOURCE_DIR + "/scenes/courses --out " + (dir / "o").string() +
+                           " --json " + (dir / "b.json").string());
+    for (const fs::path& json : {dir / "o" / "bench.json", dir / "b.json"}) {
+        if (fs::exists(json)) {
+            const Result parse =
+                Shell("/usr/bin/python3 -c 'import json,sys; json.load(open(sys.argv[1]))' " +
+                      json.string());
+            EXPECT_EQ(parse.code, 0) << json << " is not complete JSON: " << parse.output;
+        }
+    }
+    SUCCEED() << (fs::exists(dir / "b.json") ? "finished before the kill" : "killed: no JSON")
+              << r.output;
+}
+
 TEST(SweepCommand, TwoParameterGridGivesStatsAndHeatMap) {
     if (!HaveSimulator()) {
         GTEST_SKIP() << "built without the simulator";
