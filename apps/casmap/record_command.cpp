@@ -174,6 +174,9 @@ void RunRecord(const RecordOptions& opt) {
         static_cast<unsigned long long>(c.crc_errors), static_cast<unsigned long long>(c.resyncs),
         static_cast<unsigned long long>(c.reconnects), rate);
     std::fflush(stdout);
+    if (run.scans.empty() && !timed_out) {
+        throw std::runtime_error(opt.device + ": no scan received; nothing written");
+    }
     if (timed_out) {
         char seconds[32];
         std::snprintf(seconds, sizeof(seconds), "%g", opt.timeout_s);
