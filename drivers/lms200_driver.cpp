@@ -23,6 +23,8 @@ double WallNowS() {
         .count();
 }
 
+constexpr double kSilentLineS = 0.15;  // no ACK and no byte for this long: give up the try
+
 void Sleep(double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); }
 
 void CheckPositive(double v, const char* field) {
@@ -182,10 +184,18 @@ std::optional<Telegram> Lms200Driver::Transact(const Telegram& request,
             port_->Write(frame, 1.0);
         }
         Clock::time_point deadline = Clock::now() + Duration(ack_window_s);
+        Clock::time_point last_byte = Clock::now();
         bool acked = false;
         while (Clock::now() < deadline) {
-            ReadSome(std::min(config_.inter_byte_timeout_s,
-                              std::max(0.0, Seconds(deadline - Clock::now()))));
+            if (ReadSome(std::min(config_.inter_byte_timeout_s,
+                                  std::max(0.0, Seconds(deadline - Clock::now())))) > 0) {
+                last_byte = Clock::now();
+            }
+            // Before the ACK, silence means no telegram is in flight either (the LMS leaves
+            // at most 14 ms between bytes) and the ACK (due within 60 ms) is not coming.
+            if (!acked && !saw_ack_ && Seconds(Clock::now() - last_byte) > kSilentLineS) {
+                break;
+            }
             if (awaited_) {
                 awaited_cmd_ = 0;
                 return awaited_;
@@ -207,7 +217,7 @@ std::optional<Telegram> Lms200Driver::Transact(const Telegram& request,
     return std::nullopt;
 }
 
-void Lms200Driver::ReadSome(double timeout_s) {
+std::size_t Lms200Driver::ReadSome(double timeout_s) {
     const std::size_t n = port_->Read(buffer_, timeout_s);
     const double arrival_s = WallNowS();
     const TelegramParser::Callback cb = [this, arrival_s](ParserEvent e, const Telegram& t) {
@@ -231,9 +241,10 @@ void Lms200Driver::ReadSome(double timeout_s) {
             saw_bad_crc_ = true;  // a telegram stopped short: damaged
             parser_.Timeout(cb);
         }
-        return;
+        return 0;
     }
     parser_.Feed(std::span(buffer_.data(), n), cb);
+    return n;
 }
 
 void Lms200Driver::OnTelegram(const Telegram& t, double arrival_s) {

@@ -89,7 +89,8 @@ private:
     /// Sends `request` and waits for the reply with command `reply_cmd`. nullopt after all tries.
     std::optional<Telegram> Transact(const Telegram& request, double timeout_s, int tries);
     Telegram Require(const Telegram& request, double timeout_s, const char* what);
-    void ReadSome(double timeout_s);
+    /// Reads and parses what arrives within `timeout_s`; returns the number of bytes read.
+    std::size_t ReadSome(double timeout_s);
     void OnTelegram(const Telegram& t, double arrival_s);
     bool TryReconnect(Clock::time_point deadline);
 
