@@ -4,6 +4,8 @@
 // received scan names the sweep it came from; the other beams are seeded ranges in mm plus a
 // few special codes.
 
+#include <chrono>
+#include <condition_variable>
 #include <map>
 #include <mutex>
 #include <random>
@@ -55,13 +57,21 @@ struct SentLog {
     std::set<std::uint64_t> intact;
     std::set<std::uint64_t> damaged;
     std::map<std::uint64_t, double> beam0_wall_s;
+    std::condition_variable recorded;
     void Record(const SentScan& s) {
-        std::lock_guard lock(mutex);
-        (s.intact ? intact : damaged).insert(s.index);
-        beam0_wall_s[s.index] = s.beam0_wall_s;
+        {
+            std::lock_guard lock(mutex);
+            (s.intact ? intact : damaged).insert(s.index);
+            beam0_wall_s[s.index] = s.beam0_wall_s;
+        }
+        recorded.notify_all();
     }
+    /// When beam 0 of sweep `index` was measured. The scanner reports a telegram after its last
+    /// byte is written, so the client may have it first: wait (at most 2 s) for the report.
     double Beam0(std::uint64_t index) {
-        std::lock_guard lock(mutex);
+        std::unique_lock lock(mutex);
+        recorded.wait_for(lock, std::chrono::seconds(2),
+                          [&] { return beam0_wall_s.count(index) == 1; });
         return beam0_wall_s.at(index);
     }
 };
