@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstring>
 #include <system_error>
 
 #include "core/input_error.hpp"
@@ -56,6 +57,10 @@ void PseudoTerminal::Open(const std::string& link_path, int baud) {
             const int e = errno;
             unlink(tmp.c_str());
             Close();
+            if (e == ENOENT || e == ENOTDIR || e == EACCES || e == EROFS || e == EISDIR) {
+                throw MakeInputError(link_path, "--link", "",
+                                     std::string("cannot create the link: ") + std::strerror(e));
+            }
             throw std::system_error(e, std::generic_category(), "symlink " + link_path);
         }
         link_path_ = link_path;
