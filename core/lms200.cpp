@@ -73,14 +73,14 @@ Beam Lms200Format::Decode(std::uint16_t raw) const {
 }
 
 std::uint16_t Lms200Format::EncodeRange(double range_m) const {
-    const double units = std::round(range_m / UnitM());
-    if (!(units >= 0.0)) {
+    const double count = std::round(range_m / UnitM());
+    if (!(count >= 0.0)) {
         return CodeFor(BeamStatus::kNoReturn);
     }
-    if (units >= static_cast<double>(CodeFor(BeamStatus::kOutOfRange))) {
+    if (count >= static_cast<double>(CodeFor(BeamStatus::kOutOfRange))) {
         return CodeFor(BeamStatus::kOutOfRange);
     }
-    return static_cast<std::uint16_t>(units);
+    return static_cast<std::uint16_t>(count);
 }
 
 }  // namespace casmap::core
