@@ -53,6 +53,7 @@ void DriverConfig::Validate() const {
     CheckPositive(mode_timeout_s, "mode_timeout_s");
     CheckPositive(quiet_timeout_s, "quiet_timeout_s");
     CheckPositive(inter_byte_timeout_s, "inter_byte_timeout_s");
+    CheckPositive(sync_window_s, "sync_window_s");
 }
 
 Lms200Driver::Lms200Driver(DriverConfig config) : config_(std::move(config)) {
@@ -158,6 +159,20 @@ void Lms200Driver::Initialise() {
         throw SerialError(config_.device + ": scanner refused continuous output 0x24");
     }
     info_.baud = port_->baud();
+    // The scan clock restarts with every connection (the mirror may have restarted). It needs
+    // a line that carries every sweep: when a telegram takes longer than a scan period, the
+    // scanner sends the newest sweep whenever the line frees, at a phase unrelated to the
+    // sweep grid, and the arrival times hold no information about it.
+    const double period_s = ScanPeriodS(info_.variant);
+    const std::size_t frame_bytes =
+        kFrameOverhead + 4 + 2 * static_cast<std::size_t>(info_.variant.BeamCount());
+    sync_ = config_.stamps == StampMode::kScanClock &&
+            TransmissionTimeS(frame_bytes, info_.baud) < period_s;
+    sync_outliers_ += clock_.outliers();
+    ScanClockConfig cc;
+    cc.period_s = period_s;
+    cc.window_s = config_.sync_window_s;
+    clock_ = ScanClock(cc);
     streaming_ = true;
     last_scan_ = Clock::now();
 }
@@ -260,9 +275,10 @@ void Lms200Driver::OnTelegram(const Telegram& t, double arrival_s) {
         if (v.partial) {
             throw MakeInputError("LMS 200 telegram 0xB0", "partial flag", "1", "0 in mode 0x24");
         }
-        const double stamp_s = arrival_s -
-                               TransmissionTimeS(t.Len() + kFrameOverhead, port_->baud()) -
-                               SweepDurationS(info_.variant);
+        const double latest_s = arrival_s -
+                                TransmissionTimeS(t.Len() + kFrameOverhead, port_->baud()) -
+                                SweepDurationS(info_.variant);
+        const double stamp_s = sync_ ? clock_.Stamp(latest_s) : latest_s;
         ready_.push_back(ScanFromValues(v, info_.format, info_.variant, stamp_s));
         ++own_.scans;
         last_scan_ = Clock::now();
@@ -347,6 +363,7 @@ DriverCounters Lms200Driver::counters() const {
     c.dropped_bytes = p.dropped_bytes;
     c.resyncs = p.resyncs;
     c.naks = p.naks;
+    c.sync_outliers = sync_outliers_ + clock_.outliers();
     return c;
 }
 

@@ -13,11 +13,18 @@
 
 #include "core/lms200.hpp"
 #include "core/scan.hpp"
+#include "drivers/scan_clock.hpp"
 #include "drivers/serial_port.hpp"
 #include "drivers/telegram.hpp"
 #include "drivers/telegram_parser.hpp"
 
 namespace casmap::drivers {
+
+/// How scans are stamped (docs/drivers.md).
+enum class StampMode {
+    kScanClock,  // on the scanner's sweep grid t0 + k T, phase from the minimum latency
+    kArrival,    // arrival - transmission - sweep per scan (jitters with the host's latency)
+};
 
 struct DriverConfig {
     std::string device;                  // e.g. /dev/ttyUSB0 or the virtual scanner's link
@@ -31,6 +38,8 @@ struct DriverConfig {
     double inter_byte_timeout_s = 0.05;  // partial telegram dropped after this gap (LMS: 14 ms)
     double request_byte_gap_s = 0.0;     // gap between request bytes (sicktoolbox: 55 us)
     bool autodetect = true;              // probe 19200/38400/500000 with 0x32 if 9600 is silent
+    StampMode stamps = StampMode::kScanClock;
+    double sync_window_s = 2.0;  // scan clock: lower envelope over this many seconds of scans
     /// Throws InputError naming the field (bad baud, empty device, non-positive timeouts).
     void Validate() const;
 };
@@ -47,6 +56,7 @@ struct DriverCounters {
     std::uint64_t naks = 0;           // 0x15 received
     std::uint64_t retries = 0;        // requests sent again
     std::uint64_t reconnects = 0;
+    std::uint64_t sync_outliers = 0;  // scans the scan clock kept out of its envelope
 };
 
 /// What the scanner reported during initialisation.
@@ -71,9 +81,11 @@ public:
     /// for a missing device, a non-terminal or an unsupported configuration, SerialError if no
     /// LMS 200 answers.
     void Connect();
-    /// The next scan, or nullopt if none arrived within `timeout_s`. Beam 0 is stamped
-    /// (system clock, s since the epoch) at the telegram's arrival minus its transmission time
-    /// at the line rate minus the sweep duration (scan_codec.hpp). Reconnects by itself.
+    /// The next scan, or nullopt if none arrived within `timeout_s`. Beam 0 is stamped on the
+    /// system clock (s since the epoch): the telegram's arrival minus its transmission time at
+    /// the line rate minus the sweep duration (scan_codec.hpp), then, with
+    /// StampMode::kScanClock and a line that carries every sweep, put on the sweep grid by
+    /// ScanClock (scan_clock.hpp). Reconnects by itself.
     [[nodiscard]] std::optional<core::Scan> NextScan(double timeout_s);
     /// Stops the output and returns the scanner to 9600 baud (best effort), closes the port.
     void Close();
@@ -81,6 +93,9 @@ public:
     [[nodiscard]] DriverCounters counters() const;
     [[nodiscard]] const DeviceInfo& info() const { return info_; }
     [[nodiscard]] bool connected() const { return port_ != nullptr; }
+    /// True when scans are put on the sweep grid (StampMode::kScanClock and the line at
+    /// info().baud carries a full scan telegram within one scan period).
+    [[nodiscard]] bool synchronised() const { return sync_; }
 
 private:
     using Clock = std::chrono::steady_clock;
@@ -108,6 +123,9 @@ private:
     bool saw_bad_crc_ = false;
     Clock::time_point last_scan_;
     std::vector<std::uint8_t> buffer_;
+    ScanClock clock_;
+    bool sync_ = false;
+    std::uint64_t sync_outliers_ = 0;  // of the clocks before the last reconnect
 };
 
 }  // namespace casmap::drivers

@@ -229,6 +229,15 @@ double VirtualLms200::Impl::WaitS(Clock::time_point now) const {
     double wait = kMaxWaitS;
     if (!tx.empty()) {
         wait = std::max(kMinWaitS, Seconds(next_byte - now));
+        // The telegram's last byte goes out on time, not at the next ~1 ms burst: the host's
+        // arrival time (and so its scan clock, scan_clock.hpp) sees the real line timing.
+        const Chunk& c = tx.front();
+        const double last_byte_s =
+            Seconds(next_byte - now) +
+            static_cast<double>(c.bytes.size() - c.pos - 1) * ByteTimeS(baud);
+        if (last_byte_s > 0.0) {
+            wait = std::min(wait, last_byte_s);
+        }
     } else if (op_mode == mode::kStreamAll || op_mode == mode::kStreamPartial) {
         // Wake just after the next mirror turn ends: a completed sweep goes out at once.
         const double turn_s = core::Lms200Timing::kTurnPeriodS;

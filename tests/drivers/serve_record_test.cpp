@@ -104,6 +104,8 @@ TEST(ServeRecord, At38400EveryScanArrivesIntactAtTheLineRate) {
     const DriverCounters c = driver.counters();
     EXPECT_EQ(c.crc_errors, 0U);
     EXPECT_EQ(c.reconnects, 0U);
+    // A telegram takes longer than a scan period: no phase information, arrival stamps.
+    EXPECT_FALSE(driver.synchronised());
     driver.Close();
     EXPECT_EQ(scanner.stats().baud, 9600);  // Close() returned the scanner to 9600
 }
@@ -141,8 +143,18 @@ TEST(ServeRecord, At500000EverySweepArrivesIntact) {
     std::printf("500000 baud, 0.5 deg: %.2f scans/s, %d of 19 consecutive\n", rate, consecutive);
     EXPECT_GT(rate, 30.0);
     EXPECT_GE(consecutive, 14);
-    // Latency correction (14.6 ms transmission + 20 ms interleaved sweep) applied.
+    // Latency correction (14.6 ms transmission + 20 ms interleaved sweep) applied, then the
+    // scan clock: the line carries every sweep, so stamps go on the 26.7 ms sweep grid with
+    // the phase of the least-late scan. Latency is one-sided, so no stamp is early by more
+    // than the emulator's pacing granularity (one byte time, 20 us, plus rounding).
+    EXPECT_TRUE(driver.synchronised());
     EXPECT_LT(MedianAbs(errors), 0.005);
+    for (const double e : errors) {
+        EXPECT_GT(e, -5e-5);
+    }
+    // The envelope only ever moves earlier here: the last stamp is as good as the best one.
+    EXPECT_LT(errors.back(), *std::min_element(errors.begin(), errors.end()) + 1e-6);
+    std::printf("500000 baud, 0.5 deg: last stamp error %.1f us\n", errors.back() * 1e6);
     EXPECT_EQ(driver.counters().crc_errors, 0U);
 }
 

@@ -1,0 +1,90 @@
+#include "drivers/scan_clock.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/input_error.hpp"
+
+namespace casmap::drivers {
+
+void ScanClockConfig::Validate() const {
+    if (!(period_s > 0.0)) {
+        throw MakeInputError("scan clock", "period_s", std::to_string(period_s), "must be > 0");
+    }
+    if (!(window_s > 0.0)) {
+        throw MakeInputError("scan clock", "window_s", std::to_string(window_s), "must be > 0");
+    }
+    if (!(guard >= 0.0 && guard < 1.0)) {
+        throw MakeInputError("scan clock", "guard", std::to_string(guard), "0 <= guard < 1");
+    }
+    if (!(max_step_s > 0.0)) {
+        throw MakeInputError("scan clock", "max_step_s", std::to_string(max_step_s), "must be > 0");
+    }
+    if (confirm_scans < 1) {
+        throw MakeInputError("scan clock", "confirm_scans", std::to_string(confirm_scans), ">= 1");
+    }
+    if (warmup_scans < 0) {
+        throw MakeInputError("scan clock", "warmup_scans", std::to_string(warmup_scans), ">= 0");
+    }
+}
+
+ScanClock::ScanClock(ScanClockConfig config) : config_(config) { config_.Validate(); }
+
+void ScanClock::Reset() {
+    anchor_s_ = 0.0;
+    phase_rel_s_ = 0.0;
+    last_k_ = 0;
+    count_ = 0;
+    early_run_ = 0;
+    window_.clear();
+}
+
+double ScanClock::Stamp(double latest_s) {
+    const double period = config_.period_s;
+    if (count_ == 0) {
+        anchor_s_ = latest_s;
+        phase_rel_s_ = 0.0;
+        last_k_ = 0;
+        window_.push_back({0.0, 0.0});
+        ++count_;
+        return anchor_s_;
+    }
+    const double x = latest_s - anchor_s_;
+    const double guard =
+        count_ < static_cast<std::uint64_t>(config_.warmup_scans) ? 0.5 : config_.guard;
+    auto k = static_cast<std::int64_t>(std::floor((x - phase_rel_s_) / period + guard));
+    const std::int64_t previous_k = last_k_;
+    if (k <= previous_k) {
+        k = previous_k + 1;  // two scans in one slot: the earlier one was late, the phase moves
+    }
+    const double residual = x - static_cast<double>(k) * period;
+    last_k_ = k;
+    ++count_;
+    const bool warm = count_ > static_cast<std::uint64_t>(config_.warmup_scans);
+    if (warm && residual < phase_rel_s_ - config_.max_step_s) {
+        if (++early_run_ < config_.confirm_scans) {
+            // Most likely a scan late by more than (1 - guard) T: it belongs one slot earlier
+            // (if that slot is free) and says nothing about the envelope.
+            ++outliers_;
+            if (k - 1 > previous_k) {
+                last_k_ = --k;
+            }
+            return anchor_s_ + phase_rel_s_ + static_cast<double>(k) * period;
+        }
+        window_.clear();  // consistently earlier: the clock stepped back
+    }
+    early_run_ = 0;
+    window_.push_back({x, residual});
+    while (window_.size() > 1 && window_.front().latest_rel_s < x - config_.window_s) {
+        window_.pop_front();
+    }
+    double phase = residual;
+    for (const Sample& s : window_) {
+        phase = std::min(phase, s.residual_s);
+    }
+    phase_rel_s_ = phase;
+    return anchor_s_ + phase_rel_s_ + static_cast<double>(k) * period;
+}
+
+}  // namespace casmap::drivers
