@@ -173,6 +173,7 @@ void Lms200Driver::Initialise() {
     cc.period_s = period_s;
     cc.window_s = config_.sync_window_s;
     clock_ = ScanClock(cc);
+    held_.clear();
     streaming_ = true;
     last_scan_ = Clock::now();
 }
@@ -278,8 +279,26 @@ void Lms200Driver::OnTelegram(const Telegram& t, double arrival_s) {
         const double latest_s = arrival_s -
                                 TransmissionTimeS(t.Len() + kFrameOverhead, port_->baud()) -
                                 SweepDurationS(info_.variant);
-        const double stamp_s = sync_ ? clock_.Stamp(latest_s) : latest_s;
-        ready_.push_back(ScanFromValues(v, info_.format, info_.variant, stamp_s));
+        if (!sync_) {
+            ready_.push_back(ScanFromValues(v, info_.format, info_.variant, latest_s));
+        } else {
+            const double stamp_s = clock_.Stamp(latest_s);
+            core::Scan scan = ScanFromValues(v, info_.format, info_.variant, stamp_s);
+            const auto hold = static_cast<std::uint64_t>(ScanClockConfig{}.warmup_scans);
+            if (clock_.scans() > hold) {
+                ready_.push_back(std::move(scan));
+            } else {
+                held_.emplace_back(std::move(scan), clock_.last_index());
+                if (clock_.scans() == hold) {  // re-stamp the first scans with the better phase
+                    const double period_s = ScanPeriodS(info_.variant);
+                    for (auto& [held, k] : held_) {
+                        held.stamp_s = clock_.phase_s() + static_cast<double>(k) * period_s;
+                        ready_.push_back(std::move(held));
+                    }
+                    held_.clear();
+                }
+            }
+        }
         ++own_.scans;
         last_scan_ = Clock::now();
     } catch (const InputError&) {

@@ -10,6 +10,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/lms200.hpp"
 #include "core/scan.hpp"
@@ -125,6 +127,9 @@ private:
     std::vector<std::uint8_t> buffer_;
     ScanClock clock_;
     bool sync_ = false;
+    /// The first scans after a (re)connection wait here until the scan clock has seen
+    /// ScanClockConfig::warmup_scans of them, then all get that envelope's phase.
+    std::vector<std::pair<core::Scan, std::int64_t>> held_;
     std::uint64_t sync_outliers_ = 0;  // of the clocks before the last reconnect
 };
 

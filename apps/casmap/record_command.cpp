@@ -1,5 +1,6 @@
 // casmap record --device PATH [--baud N] [--scans N | --duration S] --out RUN.h5
 //                [--variant ANGLE,RES_DEG] [--poses FILE] [--timeout S]
+//                [--stamps scan-clock|arrival]
 // Records scans from an LMS 200 (a real one, or `casmap serve`) into a run file. The driver
 // starts at 9600 baud and switches to --baud. Stops after --scans or --duration, on
 // SIGINT/SIGTERM, or (with an error) after --timeout seconds without a scan. Prints one JSON
@@ -55,6 +56,7 @@ struct RecordOptions {
     std::string variant;
     std::string poses;
     double timeout_s = 10.0;
+    std::string stamps = "scan-clock";
 };
 
 /// "180,1" / "180,0.5" / "100,0.25" (degrees) -> Variant; InputError otherwise.
@@ -101,7 +103,10 @@ std::string ConfigYaml(const RecordOptions& opt, const drivers::Lms200Driver& dr
          ", resolution_cdeg: " + std::to_string(d.variant.resolution_cdeg) + "}\n";
     y += "  measuring_mode: " + std::to_string(d.config.measuring_mode()) + "\n";
     y += "  units: " + std::string(d.config.units() == 1 ? "mm" : "cm") + "\n";
-    y += "stamps: \"system clock, s since 1970; beam 0 = arrival - transmission - sweep\"\n";
+    y += std::string("stamps: \"system clock, s since 1970; beam 0 = ") +
+         (driver.synchronised() ? "sweep grid t0 + k T (scan clock)"
+                                : "arrival - transmission - sweep") +
+         "\"\n";
     y += "poses: " + (opt.poses.empty() ? std::string("null") : "\"" + opt.poses + "\"") + "\n";
     return y;
 }
@@ -120,6 +125,11 @@ void RunRecord(const RecordOptions& opt) {
     dc.baud = opt.baud;
     if (!opt.variant.empty()) {
         dc.variant = ParseVariant(opt.variant);
+    }
+    if (opt.stamps == "arrival") {
+        dc.stamps = drivers::StampMode::kArrival;
+    } else if (opt.stamps != "scan-clock") {
+        throw MakeInputError("command line", "--stamps", opt.stamps, "scan-clock or arrival");
     }
     drivers::Lms200Driver driver(dc);
     const RecordSignals signals;
@@ -205,6 +215,9 @@ void AddRecordCommand(CLI::App& app, CommonOptions& common) {
     sub->add_option("--variant", opt->variant, "set the variant ANGLE,RES_DEG (e.g. 180,0.5)");
     sub->add_option("--poses", opt->poses, "pose file (docs/pose-file.md) stored as /poses");
     sub->add_option("--timeout", opt->timeout_s, "give up after S seconds without a scan")
+        ->capture_default_str();
+    sub->add_option("--stamps", opt->stamps,
+                    "scan-clock (on the sweep grid) or arrival (per-scan latency correction)")
         ->capture_default_str();
     AddThreadsOption(sub, common);
     sub->callback([opt] { RunRecord(*opt); });
