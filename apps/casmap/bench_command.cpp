@@ -1,4 +1,5 @@
 // casmap bench [--courses 1-16] [--tests T,TR,TP,TRP] [--seed N] [--out DIR] [--json FILE]
+//              [--rig RIG.yaml] [--sensor LMS200.yaml]
 // The paper's benchmark: for each obstacle course x test, simulate the table run, map it, run
 // CAS and the four baselines and score them against the exact ground truth (Eq. 11 PI, RMSE,
 // surviving spikes, filled-cell error, Table II classes). Runs in parallel across courses and
@@ -18,6 +19,7 @@
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "io/atomic_file.hpp"
+#include "io/sensor_config.hpp"
 
 namespace casmap::app {
 namespace {
@@ -31,6 +33,7 @@ struct BenchOptions {
     std::string json;
     std::string courses_dir;
     std::string rig;
+    std::string sensor;  // --sensor: LMS 200 YAML
     std::vector<std::string> set;
     bool no_sheets = false;
 };
@@ -67,6 +70,10 @@ void RunBench(const BenchOptions& opt, const CommonOptions& common) {
     BenchSettings settings;
     settings.courses_dir = FindCoursesDir(opt.courses_dir);
     settings.rig_path = opt.rig;
+    settings.sensor_path = opt.sensor;
+    if (!opt.sensor.empty()) {
+        (void)io::LoadLms200Config(opt.sensor);  // a bad file exits 2 before any work
+    }
     settings.seed = opt.seed;
     if (!opt.json.empty()) {
         CheckWritableFile(opt.json, "--json");
@@ -156,6 +163,8 @@ void AddBenchCommand(CLI::App& app, CommonOptions& common) {
     sub->add_option("--courses-dir", opt->courses_dir,
                     "directory of course01.yaml .. course16.yaml (default: scenes/courses)");
     sub->add_option("--rig", opt->rig, "rig YAML (table settings; default: the paper course)");
+    sub->add_option("--sensor", opt->sensor,
+                    "LMS 200 YAML (config/lms200.yaml; default: the built-in config)");
     sub->add_option("--set", opt->set, "filter parameter NAME=VALUE (see casmap filter)");
     sub->add_flag("--no-sheets", opt->no_sheets, "skip the per-run Fig. 7 sheets");
     AddThreadsOption(sub, common);

@@ -186,6 +186,7 @@ SimSetup BenchSetup(const BenchSettings& settings, int course, const std::string
     flags.motion = test;
     flags.seed = settings.seed;
     flags.rig_path = settings.rig_path;
+    flags.sensor_path = settings.sensor_path;
     flags.speed_m_s = settings.speed_m_s;
     return ResolveSimSetup(flags);
 }

@@ -42,7 +42,8 @@ struct Course {
 /// Settings common to every run of a bench or sweep.
 struct BenchSettings {
     std::string courses_dir;
-    std::string rig_path;  // optional rig YAML
+    std::string rig_path;     // optional rig YAML
+    std::string sensor_path;  // optional LMS 200 YAML (io/sensor_config.hpp)
     std::uint64_t seed = 1;
     std::optional<double> speed_m_s;
 };

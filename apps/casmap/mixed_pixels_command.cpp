@@ -1,12 +1,15 @@
 // casmap mixed-pixels [--from M] [--to M] [--step M] [--readings N] [--foreground-m M]
 //                     [--reflectivity R] [--seed N] [--png FILE] [--json FILE]
+//                     [--sensor LMS200.yaml]
 // The paper's Fig. 3 experiment with the simulated LMS 200: the scanner's straight-ahead beam
 // (beam 90) at the vertical edge of a foreground plate D_f ahead, a background wall Delta D
 // behind it. For each Delta D the edge moves across the beam: `readings` pulses with the
 // sensor stepped uniformly across the footprint (lateral offsets -a..+a, a = its 1/e^2 radius
 // at D_f), each with its own pulse index (fresh footprint rotation and noise). A reading is a
 // mixed pixel when it is a valid range more than 60 mm from both surfaces (as the paper).
-// Prints a table; writes a PNG plot and JSON when asked.
+// Prints a table; writes a PNG plot and JSON when asked. --sensor: the LMS 200 config file
+// (config/lms200.yaml); the JSON then names it and lists every key of the config used.
+#include <cctype>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -24,6 +27,7 @@
 #include "core/pose.hpp"
 #include "core/scene.hpp"
 #include "io/atomic_file.hpp"
+#include "io/sensor_config.hpp"
 #include "sensor_models/lms200_model.hpp"
 #include "sim/simulator.hpp"
 #include "sim/world.hpp"
@@ -32,7 +36,6 @@ namespace casmap::app {
 namespace {
 
 constexpr double kMixedThresholdM = 0.060;  // the paper's Fig. 3 criterion
-constexpr std::size_t kBeam = 90;           // straight ahead at 1 deg / 180 deg
 
 struct MixedOptions {
     double from_m = 0.2;
@@ -44,6 +47,7 @@ struct MixedOptions {
     std::uint64_t seed = 0;
     std::string png;
     std::string json;
+    std::string sensor;  // --sensor file; empty: the built-in defaults
 };
 
 struct GapResult {
@@ -105,7 +109,7 @@ GapResult RunGap(const MixedOptions& o, const sensor_models::Lms200Model& model,
         const double y = -a + 2.0 * a * (k + 0.5) / o.readings;
         sensor_models::PulseContext pulse;
         pulse.scan_index = static_cast<std::uint64_t>(k);
-        pulse.beam = kBeam;
+        pulse.beam = static_cast<std::uint32_t>((model.BeamCount() - 1) / 2);  // straight ahead
         const core::Pose pose{{0.0, y, 0.0}, Eigen::Quaterniond::Identity()};
         const sensor_models::PulseResult p = sim::CastPulse(world, model, pose, pulse);
         if (p.beam.status != core::BeamStatus::kOk) {
@@ -119,11 +123,34 @@ GapResult RunGap(const MixedOptions& o, const sensor_models::Lms200Model& model,
     return r;
 }
 
-std::string Json(const MixedOptions& o, const std::vector<GapResult>& results) {
+/// `"sensor_file": ..., "sensor": {...}` lines (every key of the config) for --sensor runs.
+std::string SensorJson(const MixedOptions& o, const sensor_models::Lms200Config& c) {
+    std::string s = "  \"sensor_file\": \"" + o.sensor + "\",\n  \"sensor\": {";
+    std::stringstream in(io::Lms200ConfigToYaml(c));
+    bool first = true;
+    for (std::string line; std::getline(in, line);) {
+        const std::size_t colon = line.find(": ");
+        const std::string key = line.substr(0, colon);
+        const std::string value = line.substr(colon + 2);
+        const bool text = std::isalpha(static_cast<unsigned char>(value[0])) != 0 &&
+                          value != "true" && value != "false";
+        s += std::string(first ? "" : ",") + "\n    \"" + key +
+             "\": " + (text ? "\"" + value + "\"" : value);
+        first = false;
+    }
+    return s + "\n  },\n";
+}
+
+std::string Json(const MixedOptions& o,
+                 const sensor_models::Lms200Config& c,
+                 const std::vector<GapResult>& results) {
     std::ostringstream s;
     s << "{\n  \"foreground_m\": " << o.foreground_m << ",\n  \"readings_per_gap\": " << o.readings
       << ",\n  \"reflectivity\": " << o.reflectivity << ",\n  \"seed\": " << o.seed
       << ",\n  \"mixed_threshold_m\": " << kMixedThresholdM << ",\n";
+    if (!o.sensor.empty()) {
+        s << SensorJson(o, c);
+    }
     const auto list = [&](const char* key, auto value, bool last) {
         s << "  \"" << key << "\": [";
         for (std::size_t i = 0; i < results.size(); ++i) {
@@ -211,7 +238,8 @@ void WritePng(const std::string& path, const cv::Mat& img) {
 
 void Run(const MixedOptions& o, int threads) {
     Validate(o);
-    const sensor_models::Lms200Model model(sensor_models::Lms200Config{}, o.seed);
+    const sensor_models::Lms200Model model(
+        o.sensor.empty() ? sensor_models::Lms200Config{} : io::LoadLms200Config(o.sensor), o.seed);
     std::vector<double> gaps;
     for (int i = 0;; ++i) {
         const double g = o.from_m + i * o.step_m;
@@ -226,13 +254,16 @@ void Run(const MixedOptions& o, int threads) {
     std::printf(
         "# Fig. 3 with the simulated LMS 200: D_f = %.3f m, %d readings per gap, seed %llu\n",
         o.foreground_m, o.readings, static_cast<unsigned long long>(o.seed));
+    if (!o.sensor.empty()) {
+        std::printf("# sensor: %s\n", o.sensor.c_str());
+    }
     std::printf("%10s %8s %8s %8s\n", "delta_d_m", "valid", "mixed", "mixed_%");
     for (const GapResult& g : results) {
         std::printf("%10.2f %8d %8d %8.2f\n", g.delta_d_m, g.valid, g.mixed,
                     100.0 * g.mixed / o.readings);
     }
     if (!o.json.empty()) {
-        io::WriteTextAtomically(o.json, Json(o, results));
+        io::WriteTextAtomically(o.json, Json(o, model.config(), results));
     }
     if (!o.png.empty()) {
         WritePng(o.png, Plot(o, results));
@@ -254,6 +285,8 @@ void AddMixedPixelsCommand(CLI::App& app, CommonOptions& common) {
     sub->add_option("--seed", o->seed, "run seed");
     sub->add_option("--png", o->png, "write the plot here");
     sub->add_option("--json", o->json, "write the counts here");
+    sub->add_option("--sensor", o->sensor,
+                    "LMS 200 YAML (config/lms200.yaml; default: the built-in config)");
     AddThreadsOption(sub, common);
     sub->callback([o, &common] { Run(*o, common.threads); });
 }

@@ -1,8 +1,10 @@
 // casmap scan --scene FILE --pose X,Y,Z,ROLL_DEG,PITCH_DEG,YAW_DEG [--ideal] [--seed N]
-//             [--range-mode 8|16|32] [--units mm|cm]
+//             [--range-mode 8|16|32] [--units mm|cm] [--sensor LMS200.yaml]
 // One simulated LMS 200 scan from a fixed pose, printed as one JSON object (DESIGN.md):
 // angles_deg, ranges_m (null when the beam reports no range), status, labels, plus raw.
 // --ideal: one centre ray per beam, exact distances, no footprint, noise or errors.
+// --sensor: the LMS 200 config file (config/lms200.yaml); --ideal, --range-mode and --units
+// override it when given.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -16,6 +18,7 @@
 #include "core/input_error.hpp"
 #include "core/pose.hpp"
 #include "io/scene_file.hpp"
+#include "io/sensor_config.hpp"
 #include "sensor_models/lms200_model.hpp"
 #include "sim/simulator.hpp"
 #include "sim/world.hpp"
@@ -30,6 +33,9 @@ struct ScanOptions {
     std::uint64_t seed = 0;
     int range_mode_m = 8;
     std::string units = "mm";
+    std::string sensor;  // --sensor file; empty: the built-in defaults
+    bool range_mode_given = false;
+    bool units_given = false;
 };
 
 /// "X,Y,Z,ROLL_DEG,PITCH_DEG,YAW_DEG" -> world_T_sensor; throws InputError naming --pose.
@@ -58,12 +64,19 @@ core::Pose ParsePose(const std::string& text) {
 
 sensor_models::Lms200Config MakeConfig(const ScanOptions& o) {
     sensor_models::Lms200Config c;
-    c.ideal = o.ideal;
-    c.format.mode = o.range_mode_m == 16   ? core::RangeMode::k16m
-                    : o.range_mode_m == 32 ? core::RangeMode::k32m
-                                           : core::RangeMode::k8m;
-    c.format.units =
-        o.units == "cm" ? core::RangeUnits::kCentimetre : core::RangeUnits::kMillimetre;
+    if (!o.sensor.empty()) {
+        c = io::LoadLms200Config(o.sensor);
+    }
+    c.ideal = c.ideal || o.ideal;
+    if (o.sensor.empty() || o.range_mode_given) {
+        c.format.mode = o.range_mode_m == 16   ? core::RangeMode::k16m
+                        : o.range_mode_m == 32 ? core::RangeMode::k32m
+                                               : core::RangeMode::k8m;
+    }
+    if (o.sensor.empty() || o.units_given) {
+        c.format.units =
+            o.units == "cm" ? core::RangeUnits::kCentimetre : core::RangeUnits::kMillimetre;
+    }
     return c;
 }
 
@@ -123,17 +136,23 @@ void AddScanCommand(CLI::App& app, CommonOptions& common) {
         ->required();
     sub->add_flag("--ideal", options->ideal, "one exact centre ray per beam, no sensor errors");
     sub->add_option("--seed", options->seed, "run seed (noise, footprint rotation, artifacts)");
-    sub->add_option("--range-mode", options->range_mode_m, "measuring range in m: 8, 16 or 32")
-        ->check(CLI::IsMember({8, 16, 32}));
-    sub->add_option("--units", options->units, "range units: mm or cm")
-        ->check(CLI::IsMember({"mm", "cm"}));
+    CLI::Option* mode =
+        sub->add_option("--range-mode", options->range_mode_m, "measuring range in m: 8, 16 or 32")
+            ->check(CLI::IsMember({8, 16, 32}));
+    CLI::Option* units = sub->add_option("--units", options->units, "range units: mm or cm")
+                             ->check(CLI::IsMember({"mm", "cm"}));
+    sub->add_option(
+        "--sensor", options->sensor,
+        "LMS 200 YAML (config/lms200.yaml); --ideal, --range-mode, --units override it");
     AddThreadsOption(sub, common);
-    sub->callback([options] {
+    sub->callback([options, mode, units] {
+        options->range_mode_given = mode->count() > 0;
+        options->units_given = units->count() > 0;
         const core::Pose pose = ParsePose(options->pose);
         const sensor_models::Lms200Model model(MakeConfig(*options), options->seed);
         const sim::World world(io::LoadScene(options->scene));
         const sim::ScanResult r = sim::CastScanAt(world, model, pose, 0.0, 0);
-        PrintJson(model, r, options->ideal);
+        PrintJson(model, r, model.config().ideal);
     });
 }
 

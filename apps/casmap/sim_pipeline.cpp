@@ -8,6 +8,7 @@
 #include "core/input_error.hpp"
 #include "core/parallel.hpp"
 #include "io/rig_config.hpp"
+#include "io/sensor_config.hpp"
 #include "sensor_models/lms200_model.hpp"
 #include "sim/ground_truth.hpp"
 #include "sim/simulator.hpp"
@@ -76,16 +77,16 @@ void SetPoseError(rig::PoseErrorConfig& cfg, const std::string& assignment) {
     cfg.enabled = true;
 }
 
-std::string SensorYaml(const sensor_models::Lms200Config& c) {
-    const char* mode = c.format.mode == core::RangeMode::k8m    ? "8m"
-                       : c.format.mode == core::RangeMode::k16m ? "16m"
-                                                                : "32m";
-    return std::string("sensor: {model: lms200, angular_resolution_deg: ") +
-           FormatNumber(c.angular_resolution_deg) +
-           ", field_of_view_deg: " + FormatNumber(c.field_of_view_deg) + ", range_mode: " + mode +
-           ", range_units: " + (c.format.units == core::RangeUnits::kMillimetre ? "mm" : "cm") +
-           ", ideal: " + (c.ideal ? "true" : "false") +
-           ", defaults: sensor_models/lms200_config.hpp}\n";
+/// The sensor section: the file it came from and every key of config/lms200.yaml.
+std::string SensorYaml(const SimSetup& s) {
+    std::string y =
+        "sensor_file: " + (s.sensor_path.empty() ? std::string("null") : s.sensor_path) +
+        "\n# the LMS 200, every key, in the format of config/lms200.yaml\nsensor:\n";
+    std::stringstream in(io::Lms200ConfigToYaml(s.lms));
+    for (std::string line; std::getline(in, line);) {
+        y += "  " + line + "\n";
+    }
+    return y;
 }
 
 }  // namespace
@@ -144,6 +145,10 @@ SimSetup ResolveSimSetup(const SimFlags& flags) {
     } else {
         s.table.Validate(s.rig_path.empty() ? "table" : s.rig_path);
     }
+    if (!flags.sensor_path.empty()) {
+        s.lms = io::LoadLms200Config(flags.sensor_path);
+        s.sensor_path = flags.sensor_path;
+    }
     s.lms.Validate();
     const rig::CourseConfig& c = s.table.course;
     s.grid.cell_m = 0.025;
@@ -162,7 +167,7 @@ std::string EffectiveConfigYaml(const SimSetup& s) {
     y += "seed: " + std::to_string(s.seed) + "\n";
     y += "grid: " + GridYaml(s.grid) + "\n";
     y += "rig_file: " + (s.rig_path.empty() ? std::string("null") : s.rig_path) + "\n";
-    y += SensorYaml(s.lms);
+    y += SensorYaml(s);
     y += "# the rig, every key, in the format of config/rig_table.yaml (table: T/TR/TP/TRP; "
          "vehicle)\n";
     y += io::RigConfigToYaml(io::RigConfig{s.table, s.vehicle_config, s.pose_error});

@@ -33,6 +33,7 @@ struct SimSetup {
     rig::TableConfig table;
     rig::VehicleConfig vehicle_config;
     sensor_models::Lms200Config lms;
+    std::string sensor_path;  // the --sensor file lms came from; empty: the defaults
     rig::PoseErrorConfig pose_error;
     std::uint64_t seed = 1;
     core::GridGeometry grid;  // the map grid: the course region (truth and maps)
@@ -46,6 +47,7 @@ struct SimFlags {
     std::optional<double> speed_m_s;
     std::uint64_t seed = 1;
     std::string rig_path;                 // optional rig YAML
+    std::string sensor_path;              // optional LMS 200 YAML (io/sensor_config.hpp)
     std::vector<std::string> pose_error;  // NAME=VALUE settings of rig::PoseErrorConfig
 };
 

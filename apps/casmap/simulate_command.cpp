@@ -1,5 +1,6 @@
 // casmap simulate --scene FILE --motion T|TR|TP|TRP|vehicle [--speed M_S] [--seed N]
-//                 [--rig RIG.yaml] [--pose-error NAME=VALUE]... --out RUN.h5
+//                 [--rig RIG.yaml] [--sensor LMS200.yaml] [--pose-error NAME=VALUE]...
+//                 --out RUN.h5
 // One simulated run -> one HDF5 run file (scans, raw values, statuses, truth labels, poses, the
 // ground-truth map of the course region, the effective configuration and seed), plus
 // RUN.config.yaml beside it. Byte-identical output at any --threads.
@@ -72,6 +73,8 @@ void AddSimulateCommand(CLI::App& app, CommonOptions& common) {
         sub->add_option("--speed", opt->speed_m_s, "cruise speed (m/s; table <= 1, vehicle <= 3)");
     sub->add_option("--seed", opt->flags.seed, "simulator seed")->capture_default_str();
     sub->add_option("--rig", opt->flags.rig_path, "rig YAML (table or vehicle settings)");
+    sub->add_option("--sensor", opt->flags.sensor_path,
+                    "LMS 200 YAML (config/lms200.yaml; default: the built-in config)");
     sub->add_option("--pose-error", opt->flags.pose_error,
                     "pose-estimate error NAME=VALUE (position_bias_m=X,Y,Z, attitude_bias_deg=..., "
                     "position_jitter_m=..., ...); repeatable");

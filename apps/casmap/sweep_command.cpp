@@ -1,5 +1,5 @@
 // casmap sweep [--set NAME=FROM:TO:STEP]... [--fix NAME=VALUE]... [--courses ...]
-//              [--tests ...] [--seed N] [--json FILE] [--out DIR]
+//              [--tests ...] [--seed N] [--json FILE] [--out DIR] [--sensor LMS200.yaml]
 // A grid over CAS parameters (A, G, B, h_sum_min, a, E, k) and the table speed on chosen
 // courses and tests: the mean and spread of CAS's PI (Eq. 11) per grid point. Every course x
 // test x speed is simulated once; `a` re-maps the simulated scans, every other parameter only
@@ -20,6 +20,7 @@
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "io/atomic_file.hpp"
+#include "io/sensor_config.hpp"
 
 namespace casmap::app {
 namespace {
@@ -38,6 +39,7 @@ struct SweepOptions {
     std::string out = "out/sweep";
     std::string courses_dir;
     std::string rig;
+    std::string sensor;  // --sensor: LMS 200 YAML
 };
 
 struct Axis {
@@ -178,6 +180,8 @@ void AddSweepCommand(CLI::App& app, CommonOptions& common) {
     sub->add_option("--courses-dir", opt->courses_dir,
                     "directory of course01.yaml .. course16.yaml (default: scenes/courses)");
     sub->add_option("--rig", opt->rig, "rig YAML (table settings; default: the paper course)");
+    sub->add_option("--sensor", opt->sensor,
+                    "LMS 200 YAML (config/lms200.yaml; default: the built-in config)");
     AddThreadsOption(sub, common);
     sub->callback([opt, &common] { RunSweep(*opt, common); });
 }
@@ -200,6 +204,10 @@ void RunSweep(const SweepOptions& opt, const CommonOptions& common) {
     BenchSettings settings;
     settings.courses_dir = FindCoursesDir(opt.courses_dir);
     settings.rig_path = opt.rig;
+    settings.sensor_path = opt.sensor;
+    if (!opt.sensor.empty()) {
+        (void)io::LoadLms200Config(opt.sensor);  // a bad file exits 2 before any work
+    }
     settings.seed = opt.seed;
     if (!opt.json.empty()) {
         CheckWritableFile(opt.json, "--json");
