@@ -8,7 +8,7 @@ packages=(
     libeigen3-dev libembree-dev libbullet-dev libassimp-dev
     libopencv-dev libyaml-cpp-dev libcli11-dev libhdf5-dev
     libgtest-dev libgmock-dev libbenchmark-dev libtiff-dev
-    clang libclang-rt-14-dev clang-format
+    clang libclang-rt-14-dev clang-format xxd
     python3 python3-numpy python3-scipy python3-h5py python3-opencv
 )
 

@@ -13,11 +13,11 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCASMAP_BUILD_TESTS=ON 
 cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs" --timeout 300
 
+# The telegram parser under libFuzzer for a bounded time (FUZZ_SECONDS, default 60).
+bash scripts/fuzz.sh
+
+# The robot build: core, mapper, drivers and io without Embree, Bullet or assimp.
 cmake -S . -B build-nosim -G Ninja -DCMAKE_BUILD_TYPE=Release -DCASMAP_BUILD_SIM=OFF \
     -DCASMAP_BUILD_TESTS=ON -DCASMAP_WERROR=ON
 cmake --build build-nosim -j "$jobs"
 ctest --test-dir build-nosim --output-on-failure -j "$jobs" --timeout 300
-
-if [ -x scripts/fuzz.sh ]; then
-    bash scripts/fuzz.sh
-fi
