@@ -125,7 +125,11 @@ GapResult RunGap(const MixedOptions& o, const sensor_models::Lms200Model& model,
 
 /// `"sensor_file": ..., "sensor": {...}` lines (every key of the config) for --sensor runs.
 std::string SensorJson(const MixedOptions& o, const sensor_models::Lms200Config& c) {
-    std::string s = "  \"sensor_file\": \"" + o.sensor + "\",\n  \"sensor\": {";
+    std::string s = "  \"sensor_file\": \"";
+    for (const char ch : o.sensor) {
+        s += ch == '"' || ch == '\\' ? std::string("\\") + ch : std::string(1, ch);
+    }
+    s += "\",\n  \"sensor\": {";
     std::stringstream in(io::Lms200ConfigToYaml(c));
     bool first = true;
     for (std::string line; std::getline(in, line);) {
