@@ -12,26 +12,14 @@
 #include <string>
 #include <vector>
 
+#include "tests/apps/cli_runner.hpp"
+
 namespace casmap {
 namespace {
 namespace fs = std::filesystem;
 
-struct Result {
-    int code = -1;
-    std::string output;
-};
-
-Result Shell(const std::string& cmd) {
-    Result r;
-    FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
-    char buffer[4096];
-    while (pipe != nullptr && fgets(buffer, sizeof(buffer), pipe) != nullptr) {
-        r.output += buffer;
-    }
-    const int status = pipe != nullptr ? pclose(pipe) : -1;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+using test::Result;
+using test::Shell;
 
 Result Casmap(const std::string& args) {
     return Shell(std::string(CASMAP_EXE) + " " + args + " --courses-dir " + CASMAP_SOURCE_DIR +

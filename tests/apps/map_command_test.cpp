@@ -11,6 +11,7 @@
 #include "core/pose.hpp"
 #include "io/image.hpp"
 #include "io/run_file.hpp"
+#include "tests/apps/cli_runner.hpp"
 
 namespace casmap {
 namespace {
@@ -19,23 +20,8 @@ namespace fs = std::filesystem;
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 constexpr double kBlockTopM = 0.2;  // block over x in [1.0, 1.3], y in [-0.2, 0.2]
 
-struct Result {
-    int code = -1;
-    std::string output;
-};
-
-Result Casmap(const std::string& args) {
-    const std::string cmd = std::string(CASMAP_EXE) + " " + args + " 2>&1";
-    Result r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    char buffer[4096];
-    while (pipe != nullptr && fgets(buffer, sizeof(buffer), pipe) != nullptr) {
-        r.output += buffer;
-    }
-    const int status = pipe != nullptr ? pclose(pipe) : -1;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+using test::Casmap;
+using test::Result;
 
 fs::path FreshDir(const std::string& name) {
     const fs::path dir = fs::path(testing::TempDir()) / ("casmap_map_cmd_" + name);

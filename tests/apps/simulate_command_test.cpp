@@ -13,28 +13,14 @@
 #include <vector>
 
 #include "io/run_file.hpp"
+#include "tests/apps/cli_runner.hpp"
 
 namespace casmap {
 namespace {
 namespace fs = std::filesystem;
 
-struct Result {
-    int code = -1;
-    std::string output;
-};
-
-Result Casmap(const std::string& args) {
-    const std::string cmd = std::string(CASMAP_EXE) + " " + args + " 2>&1";
-    Result r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    char buffer[4096];
-    while (pipe != nullptr && fgets(buffer, sizeof(buffer), pipe) != nullptr) {
-        r.output += buffer;
-    }
-    const int status = pipe != nullptr ? pclose(pipe) : -1;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+using test::Casmap;
+using test::Result;
 
 /// Simulator builds list `simulate` among the subcommands (CLI11 answers `casmap X --help` with
 /// the main help and status 0 even when X is unknown, so that cannot tell).
