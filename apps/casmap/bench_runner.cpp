@@ -159,7 +159,8 @@ std::string FindCoursesDir(const std::string& flag) {
         }
         return flag;
     }
-    for (const std::string& dir : {std::string("scenes/courses"), std::string(CASMAP_COURSES_DIR)}) {
+    for (const std::string& dir :
+         {std::string("scenes/courses"), std::string(CASMAP_COURSES_DIR)}) {
         if (!dir.empty() && fs::is_regular_file(fs::path(dir) / "course01.yaml")) {
             return dir;
         }
