@@ -11,6 +11,7 @@
 #include "core/input_error.hpp"
 #include "core/parallel.hpp"
 #include "io/scene_file.hpp"
+#include "io/sensor_config.hpp"
 #include "mapper/filters.hpp"
 #include "mapper/metrics.hpp"
 #include "sensor_models/lms200_model.hpp"
@@ -303,6 +304,30 @@ CasScore ScoreCas(const MappedBenchRun& run,
     const mapper::Region region = mapper::PaperRegion(raw.rows, raw.cols);
     return CasScore{mapper::PerformanceIndex(cas.elevation, raw, course.truth, region),
                     mapper::ClassPercentages(cas.classes, run.mapped.certainty)};
+}
+
+BenchSettings CheckBenchSettings(const std::string& courses_dir_flag,
+                                 const std::string& rig_path,
+                                 const std::string& sensor_path,
+                                 std::uint64_t seed) {
+    BenchSettings settings;
+    settings.courses_dir = FindCoursesDir(courses_dir_flag);
+    settings.rig_path = rig_path;
+    settings.sensor_path = sensor_path;
+    if (!sensor_path.empty()) {
+        (void)io::LoadLms200Config(sensor_path);  // a bad file exits 2 before any work
+    }
+    settings.seed = seed;
+    return settings;
+}
+
+void CheckWritableFile(const std::string& path, const std::string& field) {
+    const std::filesystem::path p(path);
+    const std::filesystem::path dir =
+        p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+    if (p.filename().empty() || !std::filesystem::is_directory(dir)) {
+        throw MakeInputError(path, field, path, "directory " + dir.string() + " does not exist");
+    }
 }
 
 }  // namespace casmap::app

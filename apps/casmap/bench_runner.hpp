@@ -48,6 +48,15 @@ struct BenchSettings {
     std::optional<double> speed_m_s;
 };
 
+/// Settings from the command line, validated before any work: the courses directory exists
+/// and a sensor file (if any) loads. Throws InputError naming the flag or file.
+[[nodiscard]] BenchSettings CheckBenchSettings(const std::string& courses_dir_flag,
+                                               const std::string& rig_path,
+                                               const std::string& sensor_path,
+                                               std::uint64_t seed);
+/// Throws InputError naming `field` unless `path` names a file in an existing directory.
+void CheckWritableFile(const std::string& path, const std::string& field);
+
 /// The setup of one run (rig, sensor, grid) for a course and test.
 [[nodiscard]] SimSetup BenchSetup(const BenchSettings& settings,
                                   int course,

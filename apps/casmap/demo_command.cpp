@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "apps/casmap/commands.hpp"
+#include "apps/casmap/pipeline.hpp"
 #include "core/parallel.hpp"
 #include "io/atomic_file.hpp"
 #include "io/image.hpp"
@@ -21,21 +22,6 @@
 namespace casmap::app {
 namespace {
 namespace fs = std::filesystem;
-
-// DIR/<stem>.tiff (32-bit float) and DIR/<stem>.png (colour with legend), atomically.
-void WriteMap(const fs::path& dir,
-              const std::string& stem,
-              const core::MapF& map,
-              const std::string& title,
-              const std::string& unit,
-              const core::Raster<std::uint8_t>* unknown) {
-    io::WriteMapTiff(dir / (stem + ".tiff"), map);
-    io::PngStyle style;
-    style.title = title;
-    style.unit = unit;
-    style.unknown = unknown;
-    io::WriteMapPng(dir / (stem + ".png"), map, style);
-}
 
 struct DemoOptions {
     unsigned long long seed = 1;
@@ -97,12 +83,13 @@ void RunDemo(const DemoOptions& opt, const CommonOptions& common) {
     for (std::size_t i = 0; i < unknown.data.size(); ++i) {
         unknown.data[i] = map.certainty.data[i] == 0.0F ? 1 : 0;
     }
-    WriteMap(dir, "elevation", map.elevation, "raw elevation H", "m", &unknown);
-    WriteMap(dir, "certainty", map.certainty, "certainty C", "counts", &unknown);
-    WriteMap(dir, "truth", map.truth, "ground truth", "m", nullptr);
+    WriteMapFiles(dir, "elevation", map.elevation, "raw elevation H", "m", &unknown);
+    WriteMapFiles(dir, "certainty", map.certainty, "certainty C", "counts", &unknown);
+    WriteMapFiles(dir, "truth", map.truth, "ground truth", "m", nullptr);
     for (std::size_t m = 0; m < methods.size(); ++m) {
         const std::string name(mapper::ToString(methods[m]));
-        WriteMap(dir, "filtered_" + name, results[m].elevation, "filtered: " + name, "m", nullptr);
+        WriteMapFiles(dir, "filtered_" + name, results[m].elevation, "filtered: " + name, "m",
+                      nullptr);
     }
     io::WriteClassesPng(dir / "cas_classes.png", results[0].classes,
                         {{"untouched", 200, 200, 200},

@@ -151,14 +151,6 @@ Stats Summarise(const std::vector<double>& v) {
     return s;
 }
 
-void CheckWritableFile(const std::string& path, const std::string& field) {
-    const fs::path p(path);
-    const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-    if (p.filename().empty() || !fs::is_directory(dir)) {
-        throw MakeInputError(path, field, path, "directory " + dir.string() + " does not exist");
-    }
-}
-
 void RunSweep(const SweepOptions& opt, const CommonOptions& common);
 
 }  // namespace
@@ -201,14 +193,7 @@ void RunSweep(const SweepOptions& opt, const CommonOptions& common) {
     }
     const std::vector<int> courses = ParseCourses(opt.courses, "--courses");
     const std::vector<std::string> tests = ParseTests(opt.tests, "--tests");
-    BenchSettings settings;
-    settings.courses_dir = FindCoursesDir(opt.courses_dir);
-    settings.rig_path = opt.rig;
-    settings.sensor_path = opt.sensor;
-    if (!opt.sensor.empty()) {
-        (void)io::LoadLms200Config(opt.sensor);  // a bad file exits 2 before any work
-    }
-    settings.seed = opt.seed;
+    BenchSettings settings = CheckBenchSettings(opt.courses_dir, opt.rig, opt.sensor, opt.seed);
     if (!opt.json.empty()) {
         CheckWritableFile(opt.json, "--json");
     }
