@@ -4,9 +4,9 @@
 
 #include <random>
 
-#include "drivers/scan_codec.hpp"
-#include "drivers/telegram.hpp"
-#include "drivers/telegram_parser.hpp"
+#include "casmap/drivers/scan_codec.hpp"
+#include "casmap/drivers/telegram.hpp"
+#include "casmap/drivers/telegram_parser.hpp"
 
 namespace casmap::drivers {
 namespace {

@@ -8,9 +8,9 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
-#include "mapper/filters.hpp"
-#include "mapper/synthetic_map.hpp"
-#include "mapper/terrain_mapper.hpp"
+#include "casmap/mapper/filters.hpp"
+#include "casmap/mapper/synthetic_map.hpp"
+#include "casmap/mapper/terrain_mapper.hpp"
 
 namespace {
 

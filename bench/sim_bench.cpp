@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "core/pose.hpp"
-#include "core/scene.hpp"
-#include "core/trajectory.hpp"
-#include "io/scene_file.hpp"
-#include "sensor_models/lms200_model.hpp"
-#include "sim/simulator.hpp"
-#include "sim/world.hpp"
+#include "casmap/core/pose.hpp"
+#include "casmap/core/scene.hpp"
+#include "casmap/core/trajectory.hpp"
+#include "casmap/io/scene_file.hpp"
+#include "casmap/sensor_models/lms200_model.hpp"
+#include "casmap/sim/simulator.hpp"
+#include "casmap/sim/world.hpp"
 
 namespace {
 

@@ -1,8 +1,8 @@
-#include "core/grid.hpp"
+#include "casmap/core/grid.hpp"
 
 #include <string>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::core {
 

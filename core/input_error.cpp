@@ -1,4 +1,4 @@
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap {
 

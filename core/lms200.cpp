@@ -1,4 +1,4 @@
-#include "core/lms200.hpp"
+#include "casmap/core/lms200.hpp"
 
 #include <cmath>
 

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "core/scan.hpp"
+#include "casmap/core/scan.hpp"
 
 namespace casmap::core {
 

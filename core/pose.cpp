@@ -1,4 +1,4 @@
-#include "core/pose.hpp"
+#include "casmap/core/pose.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "core/progress.hpp"
+#include "casmap/core/progress.hpp"
 
 #include <unistd.h>
 

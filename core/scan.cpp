@@ -1,4 +1,4 @@
-#include "core/scan.hpp"
+#include "casmap/core/scan.hpp"
 
 namespace casmap::core {
 namespace {

@@ -5,7 +5,7 @@
 #include <variant>
 #include <vector>
 
-#include "core/pose.hpp"
+#include "casmap/core/pose.hpp"
 
 namespace casmap::core {
 

@@ -1,10 +1,10 @@
-#include "core/trajectory.hpp"
+#include "casmap/core/trajectory.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::core {
 

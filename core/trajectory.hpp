@@ -3,7 +3,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/pose.hpp"
+#include "casmap/core/pose.hpp"
 
 namespace casmap::core {
 

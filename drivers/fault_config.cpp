@@ -1,8 +1,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "core/input_error.hpp"
-#include "drivers/virtual_lms200.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/virtual_lms200.hpp"
 
 namespace casmap::drivers {
 namespace {

@@ -1,10 +1,10 @@
-#include "drivers/lms200_driver.hpp"
+#include "casmap/drivers/lms200_driver.hpp"
 
 #include <algorithm>
 #include <thread>
 
-#include "core/input_error.hpp"
-#include "drivers/scan_codec.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/scan_codec.hpp"
 
 namespace casmap::drivers {
 namespace {

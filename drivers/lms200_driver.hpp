@@ -13,12 +13,12 @@
 #include <utility>
 #include <vector>
 
-#include "core/lms200.hpp"
-#include "core/scan.hpp"
-#include "drivers/scan_clock.hpp"
-#include "drivers/serial_port.hpp"
-#include "drivers/telegram.hpp"
-#include "drivers/telegram_parser.hpp"
+#include "casmap/core/lms200.hpp"
+#include "casmap/core/scan.hpp"
+#include "casmap/drivers/scan_clock.hpp"
+#include "casmap/drivers/serial_port.hpp"
+#include "casmap/drivers/telegram.hpp"
+#include "casmap/drivers/telegram_parser.hpp"
 
 namespace casmap::drivers {
 

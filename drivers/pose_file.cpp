@@ -1,4 +1,4 @@
-#include "drivers/pose_file.hpp"
+#include "casmap/drivers/pose_file.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -6,7 +6,7 @@
 #include <sstream>
 #include <vector>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::drivers {
 

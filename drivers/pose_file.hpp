@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "core/trajectory.hpp"
+#include "casmap/core/trajectory.hpp"
 
 namespace casmap::drivers {
 

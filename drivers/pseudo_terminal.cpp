@@ -1,4 +1,4 @@
-#include "drivers/pseudo_terminal.hpp"
+#include "casmap/drivers/pseudo_terminal.hpp"
 
 #include <fcntl.h>
 #include <stdlib.h>
@@ -11,8 +11,8 @@
 #include <cstring>
 #include <system_error>
 
-#include "core/input_error.hpp"
-#include "drivers/serial_port.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/serial_port.hpp"
 
 namespace casmap::drivers {
 namespace {

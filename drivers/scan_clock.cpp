@@ -1,10 +1,10 @@
-#include "drivers/scan_clock.hpp"
+#include "casmap/drivers/scan_clock.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::drivers {
 

@@ -1,9 +1,9 @@
-#include "drivers/scan_codec.hpp"
+#include "casmap/drivers/scan_codec.hpp"
 
 #include <numbers>
 #include <string>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::drivers {
 namespace {

@@ -6,9 +6,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/lms200.hpp"
-#include "core/scan.hpp"
-#include "drivers/telegram.hpp"
+#include "casmap/core/lms200.hpp"
+#include "casmap/core/scan.hpp"
+#include "casmap/drivers/telegram.hpp"
 
 namespace casmap::drivers {
 

@@ -1,11 +1,11 @@
-#include "drivers/scan_list_source.hpp"
+#include "casmap/drivers/scan_list_source.hpp"
 
 #include <cmath>
 #include <numbers>
 #include <string>
 
-#include "core/input_error.hpp"
-#include "drivers/scan_codec.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/scan_codec.hpp"
 
 namespace casmap::drivers {
 

@@ -2,8 +2,8 @@
 
 #include <vector>
 
-#include "core/scan.hpp"
-#include "drivers/virtual_lms200.hpp"
+#include "casmap/core/scan.hpp"
+#include "casmap/drivers/virtual_lms200.hpp"
 
 namespace casmap::drivers {
 

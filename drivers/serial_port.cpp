@@ -1,4 +1,4 @@
-#include "drivers/serial_port.hpp"
+#include "casmap/drivers/serial_port.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -11,7 +11,7 @@
 #include <cstring>
 #include <thread>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::drivers {
 namespace {

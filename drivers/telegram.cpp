@@ -1,9 +1,9 @@
-#include "drivers/telegram.hpp"
+#include "casmap/drivers/telegram.hpp"
 
 #include <cstdio>
 
-#include "core/input_error.hpp"
-#include "drivers/telegram_detail.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/telegram_detail.hpp"
 
 namespace casmap::drivers {
 namespace {

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/lms200.hpp"
+#include "casmap/core/lms200.hpp"
 
 namespace casmap::drivers {
 

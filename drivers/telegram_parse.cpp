@@ -1,8 +1,8 @@
 #include <string>
 
-#include "core/input_error.hpp"
-#include "drivers/telegram.hpp"
-#include "drivers/telegram_detail.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/telegram.hpp"
+#include "casmap/drivers/telegram_detail.hpp"
 
 // Parsers of host and scanner telegrams (reference sections 2-4): exact lengths, payload indices
 // with the CMD byte at 0 (sicktoolbox's convention).

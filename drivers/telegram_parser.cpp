@@ -1,4 +1,4 @@
-#include "drivers/telegram_parser.hpp"
+#include "casmap/drivers/telegram_parser.hpp"
 
 namespace casmap::drivers {
 

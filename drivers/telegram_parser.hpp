@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "drivers/telegram.hpp"
+#include "casmap/drivers/telegram.hpp"
 
 namespace casmap::drivers {
 

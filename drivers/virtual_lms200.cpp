@@ -1,4 +1,4 @@
-#include "drivers/virtual_lms200.hpp"
+#include "casmap/drivers/virtual_lms200.hpp"
 
 #include <poll.h>
 #ifdef __linux__
@@ -12,9 +12,9 @@
 #include <cmath>
 #include <thread>
 
-#include "core/input_error.hpp"
-#include "drivers/scan_codec.hpp"
-#include "drivers/virtual_lms200_impl.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/scan_codec.hpp"
+#include "casmap/drivers/virtual_lms200_impl.hpp"
 
 // The line, the pacing, faults, disconnects and the serving loop of the virtual LMS 200; the
 // request handling is in virtual_lms200_requests.cpp.

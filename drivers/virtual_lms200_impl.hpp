@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "drivers/pseudo_terminal.hpp"
-#include "drivers/telegram_parser.hpp"
-#include "drivers/virtual_lms200.hpp"
+#include "casmap/drivers/pseudo_terminal.hpp"
+#include "casmap/drivers/telegram_parser.hpp"
+#include "casmap/drivers/virtual_lms200.hpp"
 
 namespace casmap::drivers {
 namespace vlms {

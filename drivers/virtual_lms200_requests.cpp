@@ -1,9 +1,9 @@
 #include <cmath>
 #include <string>
 
-#include "core/input_error.hpp"
-#include "drivers/scan_codec.hpp"
-#include "drivers/virtual_lms200_impl.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/scan_codec.hpp"
+#include "casmap/drivers/virtual_lms200_impl.hpp"
 
 // Request handling of the virtual LMS 200 (reference sections 2 and 6.5) and the choice of the
 // sweep each measured-value telegram carries.

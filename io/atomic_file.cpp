@@ -1,11 +1,11 @@
-#include "io/atomic_file.hpp"
+#include "casmap/io/atomic_file.hpp"
 
 #include <unistd.h>
 
 #include <fstream>
 #include <system_error>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::io {
 namespace fs = std::filesystem;

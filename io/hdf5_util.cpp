@@ -1,4 +1,4 @@
-#include "io/hdf5_util.hpp"
+#include "casmap/io/hdf5_util.hpp"
 
 #include <algorithm>
 #include <filesystem>

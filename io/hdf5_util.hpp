@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::io::h5 {
 

@@ -1,4 +1,4 @@
-#include "io/image.hpp"
+#include "casmap/io/image.hpp"
 
 #include <algorithm>
 #include <array>
@@ -10,8 +10,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/input_error.hpp"
-#include "io/atomic_file.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/io/atomic_file.hpp"
 
 namespace casmap::io {
 namespace fs = std::filesystem;

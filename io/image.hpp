@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/grid.hpp"
+#include "casmap/core/grid.hpp"
 
 namespace casmap::io {
 

@@ -1,4 +1,4 @@
-#include "io/mesh_import.hpp"
+#include "casmap/io/mesh_import.hpp"
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::io {
 namespace {

@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <filesystem>
 
-#include "core/scene.hpp"
+#include "casmap/core/scene.hpp"
 
 namespace casmap::io {
 

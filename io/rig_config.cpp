@@ -1,4 +1,4 @@
-#include "io/rig_config.hpp"
+#include "casmap/io/rig_config.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "core/input_error.hpp"
-#include "io/yaml_util.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/io/yaml_util.hpp"
 
 namespace casmap::io {
 namespace {

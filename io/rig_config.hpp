@@ -5,9 +5,9 @@
 
 #include <string>
 
-#include "rig/pose_error.hpp"
-#include "rig/table.hpp"
-#include "rig/vehicle.hpp"
+#include "casmap/rig/pose_error.hpp"
+#include "casmap/rig/table.hpp"
+#include "casmap/rig/vehicle.hpp"
 
 namespace casmap::io {
 

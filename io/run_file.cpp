@@ -1,12 +1,12 @@
-#include "io/run_file.hpp"
+#include "casmap/io/run_file.hpp"
 
 #include <cmath>
 #include <limits>
 #include <string_view>
 
-#include "core/input_error.hpp"
-#include "io/atomic_file.hpp"
-#include "io/hdf5_util.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/io/atomic_file.hpp"
+#include "casmap/io/hdf5_util.hpp"
 
 namespace casmap::io {
 namespace {

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "core/grid.hpp"
-#include "core/lms200.hpp"
-#include "core/scan.hpp"
-#include "core/trajectory.hpp"
+#include "casmap/core/grid.hpp"
+#include "casmap/core/lms200.hpp"
+#include "casmap/core/scan.hpp"
+#include "casmap/core/trajectory.hpp"
 
 namespace casmap::io {
 

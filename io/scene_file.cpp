@@ -1,4 +1,4 @@
-#include "io/scene_file.hpp"
+#include "casmap/io/scene_file.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "core/input_error.hpp"
-#include "core/pose.hpp"
-#include "io/mesh_import.hpp"
-#include "io/yaml_util.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/core/pose.hpp"
+#include "casmap/io/mesh_import.hpp"
+#include "casmap/io/yaml_util.hpp"
 
 namespace casmap::io {
 namespace {

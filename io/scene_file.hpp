@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "core/scene.hpp"
+#include "casmap/core/scene.hpp"
 
 namespace casmap::io {
 

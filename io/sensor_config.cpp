@@ -1,4 +1,4 @@
-#include "io/sensor_config.hpp"
+#include "casmap/io/sensor_config.hpp"
 
 #include <array>
 #include <charconv>
@@ -7,8 +7,8 @@
 #include <string_view>
 #include <variant>
 
-#include "core/input_error.hpp"
-#include "io/yaml_util.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/io/yaml_util.hpp"
 
 namespace casmap::io {
 namespace {

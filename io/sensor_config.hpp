@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "sensor_models/lms200_config.hpp"
+#include "casmap/sensor_models/lms200_config.hpp"
 
 namespace casmap::io {
 

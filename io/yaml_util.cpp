@@ -1,4 +1,4 @@
-#include "io/yaml_util.hpp"
+#include "casmap/io/yaml_util.hpp"
 
 #include <filesystem>
 #include <string>

@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::io {
 

@@ -6,7 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
-#include "mapper/filters.hpp"
+#include "casmap/mapper/filters.hpp"
 
 namespace casmap::mapper {
 namespace {

@@ -14,9 +14,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/input_error.hpp"
-#include "mapper/filters.hpp"
-#include "mapper/skeleton_median.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/mapper/filters.hpp"
+#include "casmap/mapper/skeleton_median.hpp"
 
 // The hot row loops are compiled twice, for AVX2 and the baseline, and picked at load time
 // (GCC function multi-versioning). Both run the same element-wise operations in the same

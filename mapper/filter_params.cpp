@@ -1,11 +1,11 @@
-#include "mapper/filter_params.hpp"
+#include "casmap/mapper/filter_params.hpp"
 
 #include <charconv>
 #include <cmath>
 #include <functional>
 #include <map>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::mapper {
 namespace {

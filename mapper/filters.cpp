@@ -1,4 +1,4 @@
-#include "mapper/filters.hpp"
+#include "casmap/mapper/filters.hpp"
 
 namespace casmap::mapper {
 

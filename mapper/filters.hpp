@@ -2,8 +2,8 @@
 
 #include <cstdint>
 
-#include "core/grid.hpp"
-#include "mapper/filter_params.hpp"
+#include "casmap/core/grid.hpp"
+#include "casmap/mapper/filter_params.hpp"
 
 namespace casmap::mapper {
 

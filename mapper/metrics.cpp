@@ -1,11 +1,11 @@
-#include "mapper/metrics.hpp"
+#include "casmap/mapper/metrics.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::mapper {
 namespace {

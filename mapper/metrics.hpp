@@ -2,8 +2,8 @@
 
 #include <cstdint>
 
-#include "core/grid.hpp"
-#include "mapper/filters.hpp"
+#include "casmap/core/grid.hpp"
+#include "casmap/mapper/filters.hpp"
 
 namespace casmap::mapper {
 

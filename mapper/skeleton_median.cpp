@@ -2,7 +2,7 @@
 // (the paper's form) 8 pixels go through a min/max selection network at once (AVX2 or SSE,
 // chosen at run time; both give the same result); otherwise the samples are collected and
 // std::nth_element selects.
-#include "mapper/skeleton_median.hpp"
+#include "casmap/mapper/skeleton_median.hpp"
 
 #include <algorithm>
 #include <array>

@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "mapper/filter_params.hpp"
+#include "casmap/mapper/filter_params.hpp"
 
 namespace casmap::mapper {
 

@@ -1,4 +1,4 @@
-#include "mapper/synthetic_map.hpp"
+#include "casmap/mapper/synthetic_map.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 
 #include <cstdint>
 
-#include "core/grid.hpp"
+#include "casmap/core/grid.hpp"
 
 namespace casmap::mapper {
 

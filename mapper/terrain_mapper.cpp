@@ -1,11 +1,11 @@
-#include "mapper/terrain_mapper.hpp"
+#include "casmap/mapper/terrain_mapper.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::mapper {
 namespace {

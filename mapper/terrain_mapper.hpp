@@ -4,10 +4,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/grid.hpp"
-#include "core/pose.hpp"
-#include "core/scan.hpp"
-#include "core/trajectory.hpp"
+#include "casmap/core/grid.hpp"
+#include "casmap/core/pose.hpp"
+#include "casmap/core/scan.hpp"
+#include "casmap/core/trajectory.hpp"
 
 namespace casmap::mapper {
 

@@ -1,8 +1,8 @@
-#include "rig/config_violation.hpp"
+#include "casmap/rig/config_violation.hpp"
 
 #include <sstream>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::rig {
 

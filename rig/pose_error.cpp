@@ -1,4 +1,4 @@
-#include "rig/pose_error.hpp"
+#include "casmap/rig/pose_error.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -8,8 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "core/trajectory.hpp"
-#include "rig/config_violation.hpp"
+#include "casmap/core/trajectory.hpp"
+#include "casmap/rig/config_violation.hpp"
 
 namespace casmap::rig {
 

@@ -1,5 +1,5 @@
 // rig::Table in Bullet: rigid bodies joined by a slider and two hinges, driven by joint motors.
-#include "rig/table.hpp"
+#include "casmap/rig/table.hpp"
 
 #include <btBulletDynamicsCommon.h>
 

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "core/trajectory.hpp"
-#include "rig/config_violation.hpp"
-#include "rig/profile.hpp"
-#include "rig/table_kinematics.hpp"
+#include "casmap/core/trajectory.hpp"
+#include "casmap/rig/config_violation.hpp"
+#include "casmap/rig/profile.hpp"
+#include "casmap/rig/table_kinematics.hpp"
 
 namespace casmap::rig {
 

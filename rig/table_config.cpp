@@ -4,8 +4,8 @@
 #include <limits>
 #include <numbers>
 
-#include "core/input_error.hpp"
-#include "rig/table.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/rig/table.hpp"
 
 namespace casmap::rig {
 

@@ -1,4 +1,4 @@
-#include "rig/table_kinematics.hpp"
+#include "casmap/rig/table_kinematics.hpp"
 
 #include <Eigen/Geometry>
 

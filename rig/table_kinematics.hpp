@@ -5,7 +5,7 @@
 
 #include <Eigen/Core>
 
-#include "core/pose.hpp"
+#include "casmap/core/pose.hpp"
 
 namespace casmap::rig {
 

@@ -1,5 +1,5 @@
 // rig::Vehicle in Bullet: btRaycastVehicle on the scene's terrain, speed and line controllers.
-#include "rig/vehicle.hpp"
+#include "casmap/rig/vehicle.hpp"
 
 #include <btBulletDynamicsCommon.h>
 
@@ -12,7 +12,7 @@
 #include <utility>
 #include <variant>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::rig {
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.hpp"
-#include "core/trajectory.hpp"
-#include "rig/config_violation.hpp"
+#include "casmap/core/scene.hpp"
+#include "casmap/core/trajectory.hpp"
+#include "casmap/rig/config_violation.hpp"
 
 namespace casmap::rig {
 

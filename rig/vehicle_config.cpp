@@ -1,7 +1,7 @@
 // VehicleConfig validation (no Bullet here).
 #include <cmath>
 
-#include "rig/vehicle.hpp"
+#include "casmap/rig/vehicle.hpp"
 
 namespace casmap::rig {
 

@@ -9,7 +9,9 @@ packages=(
     libopencv-dev libyaml-cpp-dev libcli11-dev libhdf5-dev
     libgtest-dev libgmock-dev libbenchmark-dev libtiff-dev
     clang libclang-rt-14-dev clang-format xxd
-    python3 python3-numpy python3-scipy python3-h5py python3-opencv
+    python3 python3-dev python3-numpy python3-scipy python3-h5py python3-opencv python3-pytest
+    nlohmann-json3-dev pybind11-dev libopenmpi-dev openmpi-bin ccache
+    libcpp-httplib-dev chromium chromium-driver python3-selenium
 )
 
 sudo_cmd=()

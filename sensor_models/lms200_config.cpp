@@ -1,10 +1,10 @@
-#include "sensor_models/lms200_config.hpp"
+#include "casmap/sensor_models/lms200_config.hpp"
 
 #include <cmath>
 #include <sstream>
 #include <string>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::sensor_models {
 namespace {

@@ -3,7 +3,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 
-#include "core/lms200.hpp"
+#include "casmap/core/lms200.hpp"
 
 namespace casmap::sensor_models {
 

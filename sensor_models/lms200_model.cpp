@@ -1,11 +1,11 @@
-#include "sensor_models/lms200_model.hpp"
+#include "casmap/sensor_models/lms200_model.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
 
-#include "sensor_models/scratch_array.hpp"
+#include "casmap/sensor_models/scratch_array.hpp"
 
 namespace casmap::sensor_models {
 namespace {

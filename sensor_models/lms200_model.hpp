@@ -7,9 +7,9 @@
 #include <span>
 #include <vector>
 
-#include "core/pose.hpp"
-#include "core/scan.hpp"
-#include "sensor_models/lms200_config.hpp"
+#include "casmap/core/pose.hpp"
+#include "casmap/core/scan.hpp"
+#include "casmap/sensor_models/lms200_config.hpp"
 
 namespace casmap::sensor_models {
 

@@ -6,8 +6,8 @@
 #include <Eigen/Core>
 #include <array>
 
-#include "core/pose.hpp"
-#include "core/scene.hpp"
+#include "casmap/core/pose.hpp"
+#include "casmap/core/scene.hpp"
 
 namespace casmap::sim {
 

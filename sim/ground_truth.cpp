@@ -1,4 +1,4 @@
-#include "sim/ground_truth.hpp"
+#include "casmap/sim/ground_truth.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -11,9 +11,9 @@
 #include <variant>
 #include <vector>
 
-#include "core/input_error.hpp"
-#include "core/parallel.hpp"
-#include "sim/box_shape.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/core/parallel.hpp"
+#include "casmap/sim/box_shape.hpp"
 
 namespace casmap::sim {
 namespace {

@@ -3,8 +3,8 @@
 // Exact ground-truth elevation maps from scene geometry (DESIGN.md "Ground truth"): never from
 // the simulated scanner.
 
-#include "core/grid.hpp"
-#include "core/scene.hpp"
+#include "casmap/core/grid.hpp"
+#include "casmap/core/scene.hpp"
 
 namespace casmap::sim {
 

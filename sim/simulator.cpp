@@ -1,4 +1,4 @@
-#include "sim/simulator.hpp"
+#include "casmap/sim/simulator.hpp"
 
 #include <array>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <string>
 #include <utility>
 
-#include "core/input_error.hpp"
-#include "core/parallel.hpp"
-#include "sensor_models/scratch_array.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/core/parallel.hpp"
+#include "casmap/sensor_models/scratch_array.hpp"
 
 namespace casmap::sim {
 namespace {

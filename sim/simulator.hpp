@@ -4,11 +4,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/pose.hpp"
-#include "core/scan.hpp"
-#include "core/trajectory.hpp"
-#include "sensor_models/lms200_model.hpp"
-#include "sim/world.hpp"
+#include "casmap/core/pose.hpp"
+#include "casmap/core/scan.hpp"
+#include "casmap/core/trajectory.hpp"
+#include "casmap/sensor_models/lms200_model.hpp"
+#include "casmap/sim/world.hpp"
 
 namespace casmap::sim {
 

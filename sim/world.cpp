@@ -3,7 +3,7 @@
 // closed form, in double precision), so a 2.5 mm pole is round and a range to it is exact.
 // Meshes: triangles. Everything is transformed to the world frame at build time (no instancing),
 // geometry id = object index in the Scene.
-#include "sim/world.hpp"
+#include "casmap/sim/world.hpp"
 
 #include <embree3/rtcore.h>
 
@@ -19,8 +19,8 @@
 #include <variant>
 #include <vector>
 
-#include "core/input_error.hpp"
-#include "sim/box_shape.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/sim/box_shape.hpp"
 
 namespace casmap::sim {
 namespace {

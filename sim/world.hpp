@@ -6,7 +6,7 @@
 #include <memory>
 #include <span>
 
-#include "core/scene.hpp"
+#include "casmap/core/scene.hpp"
 
 namespace casmap::sim {
 

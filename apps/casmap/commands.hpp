@@ -2,7 +2,12 @@
 
 #include <CLI/CLI.hpp>
 
+namespace casmap::pipeline {}
+
 namespace casmap::app {
+
+// Commands are thin clients of the pipeline library.
+using namespace casmap::pipeline;  // NOLINT(google-build-using-namespace)
 
 /// Options every subcommand shares.
 struct CommonOptions {

@@ -11,13 +11,13 @@
 #include <vector>
 
 #include "apps/casmap/commands.hpp"
-#include "apps/casmap/pipeline.hpp"
-#include "core/parallel.hpp"
-#include "io/atomic_file.hpp"
-#include "io/image.hpp"
-#include "mapper/filters.hpp"
-#include "mapper/metrics.hpp"
-#include "mapper/synthetic_map.hpp"
+#include "casmap/core/parallel.hpp"
+#include "casmap/io/atomic_file.hpp"
+#include "casmap/io/image.hpp"
+#include "casmap/mapper/filters.hpp"
+#include "casmap/mapper/metrics.hpp"
+#include "casmap/mapper/synthetic_map.hpp"
+#include "casmap/pipeline/map_run.hpp"
 
 namespace casmap::app {
 namespace {

@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "apps/casmap/commands.hpp"
-#include "core/input_error.hpp"
-#include "io/image.hpp"
-#include "mapper/filters.hpp"
-#include "mapper/metrics.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/io/image.hpp"
+#include "casmap/mapper/filters.hpp"
+#include "casmap/mapper/metrics.hpp"
 
 namespace casmap::app {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "apps/casmap/commands.hpp"
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::app {
 // Declarations of the subcommands (defined in *_command.cpp).

@@ -8,10 +8,10 @@
 #include <string>
 
 #include "apps/casmap/commands.hpp"
-#include "apps/casmap/pipeline.hpp"
-#include "core/input_error.hpp"
-#include "io/atomic_file.hpp"
-#include "io/run_file.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/io/atomic_file.hpp"
+#include "casmap/io/run_file.hpp"
+#include "casmap/pipeline/map_run.hpp"
 
 namespace casmap::app {
 namespace {

@@ -19,10 +19,10 @@
 #include <string>
 
 #include "apps/casmap/commands.hpp"
-#include "core/input_error.hpp"
-#include "drivers/lms200_driver.hpp"
-#include "drivers/pose_file.hpp"
-#include "io/run_file.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/lms200_driver.hpp"
+#include "casmap/drivers/pose_file.hpp"
+#include "casmap/io/run_file.hpp"
 
 namespace casmap::app {
 namespace {

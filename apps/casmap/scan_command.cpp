@@ -15,13 +15,13 @@
 #include <vector>
 
 #include "apps/casmap/commands.hpp"
-#include "core/input_error.hpp"
-#include "core/pose.hpp"
-#include "io/scene_file.hpp"
-#include "io/sensor_config.hpp"
-#include "sensor_models/lms200_model.hpp"
-#include "sim/simulator.hpp"
-#include "sim/world.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/core/pose.hpp"
+#include "casmap/io/scene_file.hpp"
+#include "casmap/io/sensor_config.hpp"
+#include "casmap/sensor_models/lms200_model.hpp"
+#include "casmap/sim/simulator.hpp"
+#include "casmap/sim/world.hpp"
 
 namespace casmap::app {
 namespace {

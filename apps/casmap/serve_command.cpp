@@ -17,17 +17,17 @@
 #include <thread>
 
 #include "apps/casmap/commands.hpp"
-#include "core/input_error.hpp"
-#include "drivers/pose_file.hpp"
-#include "drivers/scan_list_source.hpp"
-#include "drivers/virtual_lms200.hpp"
-#include "io/atomic_file.hpp"
-#include "io/run_file.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/pose_file.hpp"
+#include "casmap/drivers/scan_list_source.hpp"
+#include "casmap/drivers/virtual_lms200.hpp"
+#include "casmap/io/atomic_file.hpp"
+#include "casmap/io/run_file.hpp"
 #ifdef CASMAP_WITH_SIM
-#include "apps/casmap/sim_pipeline.hpp"
-#include "core/parallel.hpp"
-#include "io/scene_file.hpp"
-#include "sim/world.hpp"
+#include "casmap/core/parallel.hpp"
+#include "casmap/io/scene_file.hpp"
+#include "casmap/pipeline/sim_pipeline.hpp"
+#include "casmap/sim/world.hpp"
 #endif
 
 namespace casmap::app {

@@ -10,14 +10,14 @@
 #include <string>
 
 #include "apps/casmap/commands.hpp"
-#include "apps/casmap/pipeline.hpp"
-#include "apps/casmap/sim_pipeline.hpp"
-#include "core/input_error.hpp"
-#include "core/parallel.hpp"
-#include "core/progress.hpp"
-#include "io/atomic_file.hpp"
-#include "io/run_file.hpp"
-#include "io/scene_file.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/core/parallel.hpp"
+#include "casmap/core/progress.hpp"
+#include "casmap/io/atomic_file.hpp"
+#include "casmap/io/run_file.hpp"
+#include "casmap/io/scene_file.hpp"
+#include "casmap/pipeline/map_run.hpp"
+#include "casmap/pipeline/sim_pipeline.hpp"
 
 namespace casmap::app {
 namespace {

@@ -14,13 +14,13 @@
 #include <memory>
 #include <string>
 
-#include "apps/casmap/bench_runner.hpp"
 #include "apps/casmap/commands.hpp"
-#include "core/input_error.hpp"
-#include "core/parallel.hpp"
-#include "core/progress.hpp"
-#include "io/atomic_file.hpp"
-#include "io/sensor_config.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/core/parallel.hpp"
+#include "casmap/core/progress.hpp"
+#include "casmap/io/atomic_file.hpp"
+#include "casmap/io/sensor_config.hpp"
+#include "casmap/pipeline/bench_runner.hpp"
 
 namespace casmap::app {
 namespace {

@@ -9,12 +9,12 @@
 #include <string>
 
 #include "apps/casmap/commands.hpp"
-#include "apps/casmap/pipeline.hpp"
-#include "core/grid.hpp"
-#include "core/input_error.hpp"
-#include "io/image.hpp"
-#include "io/scene_file.hpp"
-#include "sim/ground_truth.hpp"
+#include "casmap/core/grid.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/io/image.hpp"
+#include "casmap/io/scene_file.hpp"
+#include "casmap/pipeline/map_run.hpp"
+#include "casmap/sim/ground_truth.hpp"
 
 namespace casmap::app {
 namespace {

@@ -7,11 +7,11 @@
 #include <cstdlib>
 #include <span>
 
-#include "core/input_error.hpp"
-#include "core/lms200.hpp"
-#include "drivers/scan_codec.hpp"
-#include "drivers/telegram.hpp"
-#include "drivers/telegram_parser.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/core/lms200.hpp"
+#include "casmap/drivers/scan_codec.hpp"
+#include "casmap/drivers/telegram.hpp"
+#include "casmap/drivers/telegram_parser.hpp"
 
 namespace {
 

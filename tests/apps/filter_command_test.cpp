@@ -11,7 +11,7 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 
-#include "io/image.hpp"
+#include "casmap/io/image.hpp"
 #include "tests/apps/cli_runner.hpp"
 
 namespace casmap {

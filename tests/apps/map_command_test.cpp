@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <string>
 
-#include "core/pose.hpp"
-#include "io/image.hpp"
-#include "io/run_file.hpp"
+#include "casmap/core/pose.hpp"
+#include "casmap/io/image.hpp"
+#include "casmap/io/run_file.hpp"
 #include "tests/apps/cli_runner.hpp"
 
 namespace casmap {

@@ -19,10 +19,10 @@
 #include <string>
 #include <thread>
 
-#include "core/grid.hpp"
-#include "core/pose.hpp"
-#include "io/image.hpp"
-#include "io/run_file.hpp"
+#include "casmap/core/grid.hpp"
+#include "casmap/core/pose.hpp"
+#include "casmap/io/image.hpp"
+#include "casmap/io/run_file.hpp"
 
 extern char** environ;
 

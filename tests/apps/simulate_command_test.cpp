@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "io/run_file.hpp"
+#include "casmap/io/run_file.hpp"
 #include "tests/apps/cli_runner.hpp"
 
 namespace casmap {

@@ -1,10 +1,10 @@
-#include "core/grid.hpp"
+#include "casmap/core/grid.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::core {
 namespace {

@@ -1,11 +1,11 @@
-#include "core/trajectory.hpp"
+#include "casmap/core/trajectory.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::core {
 namespace {

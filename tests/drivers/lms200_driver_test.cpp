@@ -1,5 +1,5 @@
 // Bad input for the driver: missing device, not a terminal, wrong baud, a line of noise.
-#include "drivers/lms200_driver.hpp"
+#include "casmap/drivers/lms200_driver.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -10,8 +10,8 @@
 #include <random>
 #include <thread>
 
-#include "core/input_error.hpp"
-#include "drivers/pseudo_terminal.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/pseudo_terminal.hpp"
 
 namespace casmap::drivers {
 namespace {

@@ -1,4 +1,4 @@
-#include "drivers/pose_file.hpp"
+#include "casmap/drivers/pose_file.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -6,8 +6,8 @@
 #include <fstream>
 #include <numbers>
 
-#include "core/input_error.hpp"
-#include "drivers/scan_list_source.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/scan_list_source.hpp"
 #include "test_source.hpp"
 
 namespace casmap::drivers {

@@ -1,7 +1,7 @@
 // ScanClock on synthetic arrival sequences: true sweeps on a grid t0 + k T, seeded random
 // one-sided latencies, skipped sweeps. Oracle: the lower envelope's definition, i.e. scan j is
 // stamped t0 + k_j T + (smallest latency among the scans of the last window_s seconds).
-#include "drivers/scan_clock.hpp"
+#include "casmap/drivers/scan_clock.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <random>
 #include <vector>
 
-#include "core/input_error.hpp"
-#include "drivers/lms200_driver.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/lms200_driver.hpp"
 
 namespace casmap::drivers {
 namespace {

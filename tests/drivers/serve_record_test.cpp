@@ -7,9 +7,9 @@
 #include <cmath>
 #include <thread>
 
-#include "drivers/lms200_driver.hpp"
-#include "drivers/serial_port.hpp"
-#include "drivers/virtual_lms200.hpp"
+#include "casmap/drivers/lms200_driver.hpp"
+#include "casmap/drivers/serial_port.hpp"
+#include "casmap/drivers/virtual_lms200.hpp"
 #include "test_source.hpp"
 
 namespace casmap::drivers {

@@ -1,6 +1,6 @@
 // Golden telegrams from shared/reference/lms200_protocol.md section 1 (SICK manual examples
 // quoted by manorajesh/sick-lidar and JeffreyYijiWang/Gepruft_Lidar) and one real capture.
-#include "drivers/telegram.hpp"
+#include "casmap/drivers/telegram.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <sstream>
 #include <string>
 
-#include "core/input_error.hpp"
-#include "drivers/scan_codec.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/scan_codec.hpp"
 
 namespace casmap::drivers {
 namespace {

@@ -11,8 +11,8 @@
 #include <random>
 #include <set>
 
-#include "drivers/scan_codec.hpp"
-#include "drivers/virtual_lms200.hpp"
+#include "casmap/drivers/scan_codec.hpp"
+#include "casmap/drivers/virtual_lms200.hpp"
 
 namespace casmap::drivers::testing {
 

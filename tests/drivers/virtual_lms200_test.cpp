@@ -1,5 +1,5 @@
 // The virtual LMS 200 against the raw telegrams third-party drivers send (reference 6.2-6.5).
-#include "drivers/virtual_lms200.hpp"
+#include "casmap/drivers/virtual_lms200.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -7,9 +7,9 @@
 #include <chrono>
 #include <thread>
 
-#include "core/input_error.hpp"
-#include "drivers/serial_port.hpp"
-#include "drivers/telegram_parser.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/serial_port.hpp"
+#include "casmap/drivers/telegram_parser.hpp"
 #include "test_source.hpp"
 
 namespace casmap::drivers {

@@ -1,4 +1,4 @@
-#include "io/image.hpp"
+#include "casmap/io/image.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -11,7 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::io {
 namespace {

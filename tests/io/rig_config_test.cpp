@@ -1,4 +1,4 @@
-#include "io/rig_config.hpp"
+#include "casmap/io/rig_config.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <set>
 #include <string>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::io {
 namespace {

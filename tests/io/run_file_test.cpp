@@ -1,4 +1,4 @@
-#include "io/run_file.hpp"
+#include "casmap/io/run_file.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::io {
 namespace {

@@ -1,4 +1,4 @@
-#include "io/scene_file.hpp"
+#include "casmap/io/scene_file.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -12,8 +12,8 @@
 #include <variant>
 #include <vector>
 
-#include "core/input_error.hpp"
-#include "io/mesh_import.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/io/mesh_import.hpp"
 
 namespace casmap::io {
 namespace {

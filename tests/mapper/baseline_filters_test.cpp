@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "mapper/filters.hpp"
+#include "casmap/mapper/filters.hpp"
 
 namespace casmap::mapper {
 namespace {

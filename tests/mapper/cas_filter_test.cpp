@@ -7,8 +7,8 @@
 #include <random>
 #include <vector>
 
-#include "core/input_error.hpp"
-#include "mapper/filters.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/mapper/filters.hpp"
 
 namespace casmap::mapper {
 namespace {

@@ -1,10 +1,10 @@
-#include "mapper/filter_params.hpp"
+#include "casmap/mapper/filter_params.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::mapper {
 namespace {

@@ -1,10 +1,10 @@
-#include "mapper/metrics.hpp"
+#include "casmap/mapper/metrics.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::mapper {
 namespace {

@@ -1,9 +1,9 @@
-#include "mapper/synthetic_map.hpp"
+#include "casmap/mapper/synthetic_map.hpp"
 
 #include <gtest/gtest.h>
 
-#include "mapper/filters.hpp"
-#include "mapper/metrics.hpp"
+#include "casmap/mapper/filters.hpp"
+#include "casmap/mapper/metrics.hpp"
 
 namespace casmap::mapper {
 namespace {

@@ -1,4 +1,4 @@
-#include "mapper/terrain_mapper.hpp"
+#include "casmap/mapper/terrain_mapper.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <numbers>
 #include <random>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::mapper {
 namespace {

@@ -1,4 +1,4 @@
-#include "rig/pose_error.hpp"
+#include "casmap/rig/pose_error.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::rig {
 namespace {

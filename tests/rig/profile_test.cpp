@@ -1,10 +1,10 @@
-#include "rig/profile.hpp"
+#include "casmap/rig/profile.hpp"
 
 #include <gtest/gtest.h>
 
 #include <numbers>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::rig {
 namespace {

@@ -1,4 +1,4 @@
-#include "rig/vehicle.hpp"
+#include "casmap/rig/vehicle.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -6,8 +6,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/input_error.hpp"
-#include "io/scene_file.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/io/scene_file.hpp"
 
 namespace casmap::rig {
 namespace {

@@ -1,11 +1,11 @@
-#include "sensor_models/lms200_config.hpp"
+#include "casmap/sensor_models/lms200_config.hpp"
 
 #include <gtest/gtest.h>
 
 #include <functional>
 #include <string>
 
-#include "core/input_error.hpp"
+#include "casmap/core/input_error.hpp"
 
 namespace casmap::sensor_models {
 namespace {

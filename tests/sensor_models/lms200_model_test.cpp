@@ -1,4 +1,4 @@
-#include "sensor_models/lms200_model.hpp"
+#include "casmap/sensor_models/lms200_model.hpp"
 
 #include <gtest/gtest.h>
 

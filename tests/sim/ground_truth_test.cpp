@@ -1,4 +1,4 @@
-#include "sim/ground_truth.hpp"
+#include "casmap/sim/ground_truth.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,9 +6,9 @@
 #include <numbers>
 #include <string>
 
-#include "core/input_error.hpp"
-#include "core/pose.hpp"
-#include "io/scene_file.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/core/pose.hpp"
+#include "casmap/io/scene_file.hpp"
 
 namespace casmap::sim {
 namespace {

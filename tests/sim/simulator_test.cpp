@@ -1,4 +1,4 @@
-#include "sim/simulator.hpp"
+#include "casmap/sim/simulator.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "core/input_error.hpp"
-#include "core/pose.hpp"
-#include "core/scene.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/core/pose.hpp"
+#include "casmap/core/scene.hpp"
 
 namespace casmap::sim {
 namespace {

@@ -1,4 +1,4 @@
-#include "sim/world.hpp"
+#include "casmap/sim/world.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "core/input_error.hpp"
-#include "core/pose.hpp"
-#include "io/mesh_import.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/core/pose.hpp"
+#include "casmap/io/mesh_import.hpp"
 
 namespace casmap::sim {
 namespace {

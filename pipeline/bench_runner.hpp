@@ -10,12 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "apps/casmap/benchmark_report.hpp"
-#include "apps/casmap/pipeline.hpp"
-#include "apps/casmap/sim_pipeline.hpp"
-#include "mapper/filter_params.hpp"
+#include "casmap/mapper/filter_params.hpp"
+#include "casmap/pipeline/benchmark_report.hpp"
+#include "casmap/pipeline/map_run.hpp"
+#include "casmap/pipeline/sim_pipeline.hpp"
 
-namespace casmap::app {
+namespace casmap::pipeline {
 
 /// "1-16", "4", "1,3,7-9" -> sorted unique courses in 1..16; InputError naming `field`.
 [[nodiscard]] std::vector<int> ParseCourses(const std::string& text, const std::string& field);
@@ -116,4 +116,4 @@ struct CasScore {
                                 const Course& course,
                                 const mapper::FilterParams& params);
 
-}  // namespace casmap::app
+}  // namespace casmap::pipeline

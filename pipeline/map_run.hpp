@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "core/grid.hpp"
-#include "core/scan.hpp"
-#include "core/trajectory.hpp"
-#include "mapper/terrain_mapper.hpp"
+#include "casmap/core/grid.hpp"
+#include "casmap/core/scan.hpp"
+#include "casmap/core/trajectory.hpp"
+#include "casmap/mapper/terrain_mapper.hpp"
 
-namespace casmap::app {
+namespace casmap::pipeline {
 
 /// Mapper settings a command may change (the rest of TerrainMapperConfig comes from the run).
 struct MapSettings {
@@ -68,4 +68,4 @@ void WriteMapFiles(const std::filesystem::path& dir,
 /// YAML block for a grid: "{origin_x_m: .., origin_y_m: .., cell_m: .., rows: .., cols: ..}".
 [[nodiscard]] std::string GridYaml(const core::GridGeometry& grid);
 
-}  // namespace casmap::app
+}  // namespace casmap::pipeline

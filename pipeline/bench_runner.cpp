@@ -1,4 +1,4 @@
-#include "apps/casmap/bench_runner.hpp"
+#include "casmap/pipeline/bench_runner.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -8,20 +8,20 @@
 #include <sstream>
 #include <variant>
 
-#include "core/input_error.hpp"
-#include "core/parallel.hpp"
-#include "io/scene_file.hpp"
-#include "io/sensor_config.hpp"
-#include "mapper/filters.hpp"
-#include "mapper/metrics.hpp"
-#include "sensor_models/lms200_model.hpp"
-#include "sim/ground_truth.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/core/parallel.hpp"
+#include "casmap/io/scene_file.hpp"
+#include "casmap/io/sensor_config.hpp"
+#include "casmap/mapper/filters.hpp"
+#include "casmap/mapper/metrics.hpp"
+#include "casmap/sensor_models/lms200_model.hpp"
+#include "casmap/sim/ground_truth.hpp"
 
 #ifndef CASMAP_COURSES_DIR
 #define CASMAP_COURSES_DIR ""
 #endif
 
-namespace casmap::app {
+namespace casmap::pipeline {
 namespace {
 namespace fs = std::filesystem;
 
@@ -330,4 +330,4 @@ void CheckWritableFile(const std::string& path, const std::string& field) {
     }
 }
 
-}  // namespace casmap::app
+}  // namespace casmap::pipeline

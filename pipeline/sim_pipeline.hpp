@@ -8,17 +8,17 @@
 #include <optional>
 #include <string>
 
-#include "core/grid.hpp"
-#include "core/progress.hpp"
-#include "core/scene.hpp"
-#include "io/run_file.hpp"
-#include "rig/pose_error.hpp"
-#include "rig/table.hpp"
-#include "rig/vehicle.hpp"
-#include "sensor_models/lms200_config.hpp"
-#include "sim/world.hpp"
+#include "casmap/core/grid.hpp"
+#include "casmap/core/progress.hpp"
+#include "casmap/core/scene.hpp"
+#include "casmap/io/run_file.hpp"
+#include "casmap/rig/pose_error.hpp"
+#include "casmap/rig/table.hpp"
+#include "casmap/rig/vehicle.hpp"
+#include "casmap/sensor_models/lms200_config.hpp"
+#include "casmap/sim/world.hpp"
 
-namespace casmap::app {
+namespace casmap::pipeline {
 
 /// The scene layout of scenes/courses/*.yaml: the paper's N = 200 x M = 80 cells of 25 mm,
 /// x in [1, 6) m, y in [-1, 1) m.
@@ -81,4 +81,4 @@ struct SimulatedRun {
 /// Number of scans SimulateRun will produce (for progress bars).
 [[nodiscard]] std::size_t ScanCount(const SimSetup& setup, const core::Trajectory& trajectory);
 
-}  // namespace casmap::app
+}  // namespace casmap::pipeline

@@ -1,19 +1,19 @@
-#include "apps/casmap/sim_pipeline.hpp"
+#include "casmap/pipeline/sim_pipeline.hpp"
 
 #include <charconv>
 #include <cmath>
 #include <sstream>
 
-#include "apps/casmap/pipeline.hpp"
-#include "core/input_error.hpp"
-#include "core/parallel.hpp"
-#include "io/rig_config.hpp"
-#include "io/sensor_config.hpp"
-#include "sensor_models/lms200_model.hpp"
-#include "sim/ground_truth.hpp"
-#include "sim/simulator.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/core/parallel.hpp"
+#include "casmap/io/rig_config.hpp"
+#include "casmap/io/sensor_config.hpp"
+#include "casmap/pipeline/map_run.hpp"
+#include "casmap/sensor_models/lms200_model.hpp"
+#include "casmap/sim/ground_truth.hpp"
+#include "casmap/sim/simulator.hpp"
 
-namespace casmap::app {
+namespace casmap::pipeline {
 namespace {
 
 double ParseDouble(const std::string& text, const std::string& field, const std::string& value) {
@@ -240,4 +240,4 @@ SimulatedRun SimulateRun(const SimSetup& setup,
     return out;
 }
 
-}  // namespace casmap::app
+}  // namespace casmap::pipeline

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "core/grid.hpp"
-#include "mapper/metrics.hpp"
+#include "casmap/core/grid.hpp"
+#include "casmap/mapper/metrics.hpp"
 
-namespace casmap::app {
+namespace casmap::pipeline {
 
 /// Filter names in the paper's order, as bench.json spells them.
 [[nodiscard]] const std::vector<std::string>& BenchFilterNames();
@@ -93,4 +93,4 @@ struct HeatMap {
 };
 void WriteHeatMap(const std::filesystem::path& path, const HeatMap& map);
 
-}  // namespace casmap::app
+}  // namespace casmap::pipeline

@@ -1,4 +1,4 @@
-#include "apps/casmap/pipeline.hpp"
+#include "casmap/pipeline/map_run.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -6,11 +6,11 @@
 #include <limits>
 #include <sstream>
 
-#include "core/input_error.hpp"
-#include "core/lms200.hpp"
-#include "io/image.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/core/lms200.hpp"
+#include "casmap/io/image.hpp"
 
-namespace casmap::app {
+namespace casmap::pipeline {
 
 double ScanPeriod(const std::vector<core::Scan>& scans) {
     if (scans.size() < 2) {
@@ -160,4 +160,4 @@ std::string GridYaml(const core::GridGeometry& grid) {
            ", cols: " + std::to_string(grid.cols) + "}";
 }
 
-}  // namespace casmap::app
+}  // namespace casmap::pipeline

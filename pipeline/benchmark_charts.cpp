@@ -10,11 +10,11 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "apps/casmap/benchmark_report.hpp"
-#include "core/input_error.hpp"
-#include "io/atomic_file.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/io/atomic_file.hpp"
+#include "casmap/pipeline/benchmark_report.hpp"
 
-namespace casmap::app {
+namespace casmap::pipeline {
 namespace {
 namespace fs = std::filesystem;
 
@@ -362,4 +362,4 @@ void WriteHeatMap(const fs::path& path, const HeatMap& map) {
     WritePng(path, img);
 }
 
-}  // namespace casmap::app
+}  // namespace casmap::pipeline

@@ -1,4 +1,4 @@
-#include "apps/casmap/benchmark_report.hpp"
+#include "casmap/pipeline/benchmark_report.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <set>
 
-namespace casmap::app {
+namespace casmap::pipeline {
 namespace {
 
 // Table II of the paper (benchmark test T), courses 1-16: mixed, missing, untouched (%).
@@ -249,4 +249,4 @@ std::string PolesMarkdown(const std::vector<BenchRun>& runs) {
     return md;
 }
 
-}  // namespace casmap::app
+}  // namespace casmap::pipeline
