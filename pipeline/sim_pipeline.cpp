@@ -1,5 +1,6 @@
 #include "casmap/pipeline/sim_pipeline.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -187,8 +188,13 @@ std::size_t ScanCountFor(const sensor_models::Lms200Model& model,
     if (trajectory.size() < 2) {
         return 0;
     }
-    const double span = trajectory.EndTime() - trajectory.StartTime() -
-                        model.BeamTimeOffsetS(model.BeamCount() - 1);
+    // Interleaved resolutions (0.5, 0.25 deg) take their beams out of angle order: the
+    // latest beam is not the last one.
+    double latest = 0.0;
+    for (std::size_t i = 0; i < model.BeamCount(); ++i) {
+        latest = std::max(latest, model.BeamTimeOffsetS(i));
+    }
+    const double span = trajectory.EndTime() - trajectory.StartTime() - latest;
     if (span < 0.0) {
         return 0;
     }
