@@ -211,6 +211,17 @@ void WriteMaps(hid_t file, const fs::path& path, const RunMaps& maps) {
             WriteLayer(group.get(), name, **layer);
         }
     }
+    if (maps.cas_classes) {
+        const core::Raster<std::uint8_t>& c = *maps.cas_classes;
+        if (c.rows != grid.rows || c.cols != grid.cols) {
+            throw MakeInputError(path.string(), "maps.cas_classes",
+                                 std::to_string(c.rows) + " x " + std::to_string(c.cols),
+                                 "must match the grid's " + std::to_string(grid.rows) + " x " +
+                                     std::to_string(grid.cols));
+        }
+        h5::WriteDataset(group.get(), "cas_classes",
+                         {static_cast<hsize_t>(c.rows), static_cast<hsize_t>(c.cols)}, c.data);
+    }
     if (maps.filtered.empty()) {
         return;
     }
@@ -474,6 +485,17 @@ RunMaps ReadMaps(const h5::FileReader& r) {
     if (r.Has("/maps/truth_m")) {
         maps.truth_m = ReadLayer(r, "/maps/truth_m", g);
     }
+    if (r.Has("/maps/cas_classes")) {
+        std::vector<hsize_t> dims;
+        core::Raster<std::uint8_t> c;
+        c.data = r.Read<std::uint8_t>("/maps/cas_classes", 2, dims);
+        if (dims[0] != static_cast<hsize_t>(g.rows) || dims[1] != static_cast<hsize_t>(g.cols)) {
+            throw r.Error("/maps/cas_classes", Shape(dims), "must match /maps rows x cols");
+        }
+        c.rows = g.rows;
+        c.cols = g.cols;
+        maps.cas_classes = std::move(c);
+    }
     if (r.Has("/maps/filtered")) {
         for (const std::string& method : r.Children("/maps/filtered")) {
             maps.filtered[method] = ReadLayer(r, "/maps/filtered/" + method, g);
@@ -540,6 +562,9 @@ void AddRunMaps(const fs::path& path, const RunMaps& maps) {
     }
     if (maps.truth_m) {
         stored.truth_m = maps.truth_m;
+    }
+    if (maps.cas_classes) {
+        stored.cas_classes = maps.cas_classes;
     }
     for (const auto& [method, map] : maps.filtered) {
         stored.filtered[method] = map;

@@ -26,9 +26,11 @@ struct RunMaps {
     std::optional<core::MapF> certainty;         // /maps/certainty, Eq. 5 (counts)
     std::optional<core::MapF> truth_m;           // /maps/truth_m, exact ground truth (m)
     std::map<std::string, core::MapF> filtered;  // /maps/filtered/<method> (m)
+    /// /maps/cas_classes: the CAS filter's per-cell class (mapper::PixelClass values).
+    std::optional<core::Raster<std::uint8_t>> cas_classes;
 
     [[nodiscard]] bool empty() const {
-        return !elevation_m && !certainty && !truth_m && filtered.empty();
+        return !elevation_m && !certainty && !truth_m && filtered.empty() && !cas_classes;
     }
 };
 
