@@ -33,6 +33,15 @@ if(CASMAP_BUILD_SIM)
     endif()
 endif()
 
+# MPI for `casmap dataset` across machines: optional, the command falls back to threads.
+if(CASMAP_WITH_MPI AND CASMAP_BUILD_SIM)
+    find_package(MPI COMPONENTS C)
+    if(NOT MPI_C_FOUND)
+        message(STATUS "casmap: MPI not found, casmap dataset runs on threads only")
+        set(CASMAP_WITH_MPI OFF)
+    endif()
+endif()
+
 if(CASMAP_BUILD_TESTS)
     find_package(GTest REQUIRED)
     include(GoogleTest)

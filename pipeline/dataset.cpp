@@ -1,0 +1,206 @@
+#include "casmap/pipeline/dataset.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "casmap/core/input_error.hpp"
+#include "casmap/io/atomic_file.hpp"
+#include "casmap/io/dataset_spec_file.hpp"
+#include "casmap/pipeline/dataset_card.hpp"
+#include "casmap/pipeline/sha256.hpp"
+#include "casmap/scenegen/random.hpp"
+
+namespace casmap::pipeline {
+namespace {
+namespace fs = std::filesystem;
+
+std::optional<std::string> ReadFirstLine(const fs::path& path) {
+    std::ifstream in(path);
+    std::string line;
+    if (!in || !std::getline(in, line) || line.empty()) {
+        return std::nullopt;
+    }
+    return line;
+}
+
+// Every "<hex>  <name>" line of files.sha256 matches its file.
+bool HashesVerify(const fs::path& dir) {
+    std::ifstream in(dir / "files.sha256");
+    if (!in) {
+        return false;
+    }
+    bool any = false;
+    for (std::string line; std::getline(in, line);) {
+        if (line.size() < 67 || line.compare(64, 2, "  ") != 0) {
+            return false;
+        }
+        const fs::path file = dir / line.substr(66);
+        std::error_code ec;
+        if (!fs::is_regular_file(file, ec)) {
+            return false;
+        }
+        try {
+            if (Sha256File(file) != line.substr(0, 64)) {
+                return false;
+            }
+        } catch (const InputError&) {
+            return false;
+        }
+        any = true;
+    }
+    return any;
+}
+
+std::string PendingLine(const scenegen::DatasetSpec& spec, std::size_t index) {
+    const std::uint64_t seed = scenegen::SampleSeed(spec.seed, index);
+    return "{\"index\":" + std::to_string(index) + ",\"seed\":" + std::to_string(seed) +
+           ",\"split\":\"" + scenegen::SplitOf(spec, seed) + "\",\"status\":\"pending\"}";
+}
+
+}  // namespace
+
+std::vector<fs::path> FindRockMeshes(const std::string& dir_flag) {
+    std::vector<fs::path> candidates;
+    if (!dir_flag.empty()) {
+        candidates.emplace_back(dir_flag);
+    } else {
+        candidates.emplace_back("scenes/meshes");
+#ifdef CASMAP_MESHES_DIR
+        candidates.emplace_back(CASMAP_MESHES_DIR);
+#endif
+    }
+    for (const fs::path& dir : candidates) {
+        std::error_code ec;
+        std::vector<fs::path> rocks;
+        for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+            const std::string name = e.path().filename().string();
+            if (name.rfind("rock_", 0) == 0 && e.path().extension() == ".ply") {
+                rocks.push_back(e.path());
+            }
+        }
+        if (!rocks.empty()) {
+            std::sort(rocks.begin(), rocks.end());
+            return rocks;
+        }
+    }
+    throw MakeInputError(dir_flag.empty() ? "scenes/meshes" : dir_flag, "--meshes", dir_flag,
+                         "no rock_*.ply meshes found");
+}
+
+std::optional<SampleRecord> VerifiedSample(const fs::path& out_dir, std::size_t index) {
+    const fs::path dir = SampleDir(out_dir, index);
+    const std::optional<std::string> line = ReadFirstLine(dir / "sample.json");
+    if (!line || !HashesVerify(dir)) {
+        return std::nullopt;
+    }
+    return SampleRecord{index, true, true, *line};
+}
+
+SampleRecord ProduceSample(const scenegen::DatasetSpec& spec,
+                           const DatasetContext& context,
+                           std::size_t index) {
+    if (std::optional<SampleRecord> done = VerifiedSample(context.out_dir, index)) {
+        return *done;
+    }
+    return GenerateSample(spec, context, index);
+}
+
+std::vector<std::size_t> ShardIndices(std::size_t count, std::size_t shard, std::size_t shards) {
+    std::vector<std::size_t> out;
+    for (std::size_t i = shard; i < count; i += shards) {
+        out.push_back(i);
+    }
+    return out;
+}
+
+DatasetSummary RunDataset(const scenegen::DatasetSpec& spec,
+                          const DatasetContext& context,
+                          const DatasetOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    io::EnsureDirectory(context.out_dir / "samples");
+    const std::vector<std::size_t> indices =
+        ShardIndices(static_cast<std::size_t>(spec.count), options.shard, options.shards);
+    std::vector<SampleRecord> records(indices.size());
+    std::atomic<std::size_t> next{0};
+    std::mutex mutex;
+    DatasetProgress progress{0, indices.size(), 0, 0.0};
+    const auto work = [&] {
+        for (std::size_t k = next++; k < indices.size(); k = next++) {
+            records[k] = ProduceSample(spec, context, indices[k]);
+            const std::lock_guard<std::mutex> lock(mutex);
+            ++progress.done;
+            progress.failed += records[k].ok ? 0 : 1;
+            progress.elapsed_s =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (options.progress) {
+                options.progress(progress);
+            }
+        }
+    };
+    const int threads =
+        std::max(1, std::min<int>(options.threads, static_cast<int>(indices.size())));
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) {
+        pool.emplace_back(work);
+    }
+    work();
+    for (std::thread& t : pool) {
+        t.join();
+    }
+    std::map<std::size_t, SampleRecord> by_index;
+    for (SampleRecord& r : records) {
+        by_index[r.index] = std::move(r);
+    }
+    DatasetSummary summary = WriteDatasetIndex(spec, context.out_dir, by_index);
+    summary.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return summary;
+}
+
+DatasetSummary WriteDatasetIndex(const scenegen::DatasetSpec& spec,
+                                 const fs::path& out_dir,
+                                 const std::map<std::size_t, SampleRecord>& records) {
+    DatasetSummary summary;
+    std::string manifest;
+    std::vector<SampleRecord> ok;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(spec.count); ++i) {
+        const auto it = records.find(i);
+        std::optional<SampleRecord> r;
+        if (it != records.end()) {
+            r = it->second;
+            summary.generated += r->reused ? 0 : 1;
+            summary.reused += r->reused ? 1 : 0;
+            summary.failed += r->ok ? 0 : 1;
+        } else if ((r = VerifiedSample(out_dir, i))) {
+            r->reused = true;
+        }
+        if (!r) {
+            ++summary.pending;
+            manifest += PendingLine(spec, i) + "\n";
+            continue;
+        }
+        manifest += r->line + "\n";
+        if (r->ok) {
+            ok.push_back(*r);
+        }
+    }
+    summary.generated -= std::min(summary.generated, summary.failed);
+    io::WriteTextAtomically(out_dir / "manifest.jsonl", manifest);
+    std::string yaml = "# casmap dataset: the effective spec and the counts\n";
+    yaml += "casmap_version: " + std::string(CASMAP_VERSION) + "\n";
+    yaml += "counts: {samples: " + std::to_string(spec.count) +
+            ", ok: " + std::to_string(ok.size()) +
+            ", failed: " + std::to_string(spec.count - ok.size() - summary.pending) +
+            ", pending: " + std::to_string(summary.pending) + "}\n";
+    yaml += io::DatasetSpecToYaml(spec);
+    io::WriteTextAtomically(out_dir / "dataset.yaml", yaml);
+    WriteDatasetCard(spec, out_dir, ok);
+    return summary;
+}
+
+}  // namespace casmap::pipeline
