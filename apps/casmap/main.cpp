@@ -22,6 +22,7 @@ void AddTruthCommand(CLI::App& app, CommonOptions& common);
 #ifdef CASMAP_WITH_SIM
 void AddScanCommand(CLI::App& app, CommonOptions& common);
 void AddMixedPixelsCommand(CLI::App& app, CommonOptions& common);
+void AddDatasetCommand(CLI::App& app, CommonOptions& common);
 #endif
 void AddServeCommand(CLI::App& app, CommonOptions& common);
 void AddRecordCommand(CLI::App& app, CommonOptions& common);
@@ -48,6 +49,7 @@ int main(int argc, char** argv) {
 #ifdef CASMAP_WITH_SIM
     AddScanCommand(app, common);
     AddMixedPixelsCommand(app, common);
+    AddDatasetCommand(app, common);
 #endif
     AddServeCommand(app, common);
     AddRecordCommand(app, common);
@@ -60,6 +62,8 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
         return app.exit(e);
+    } catch (const CLI::RuntimeError& e) {  // a command's own exit status (e.g. dataset)
+        return e.get_exit_code();
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "casmap: %s\n", e.what());
         return 2;
