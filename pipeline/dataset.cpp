@@ -1,12 +1,9 @@
 #include "casmap/pipeline/dataset.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <fstream>
-#include <mutex>
 #include <sstream>
-#include <thread>
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/atomic_file.hpp"
@@ -60,6 +57,16 @@ std::string PendingLine(const scenegen::DatasetSpec& spec, std::size_t index) {
     const std::uint64_t seed = scenegen::SampleSeed(spec.seed, index);
     return "{\"index\":" + std::to_string(index) + ",\"seed\":" + std::to_string(seed) +
            ",\"split\":\"" + scenegen::SplitOf(spec, seed) + "\",\"status\":\"pending\"}";
+}
+
+// A record as a payload of DistributeWork: "ok reused\nline".
+std::string EncodeRecord(const SampleRecord& r) {
+    return std::string(r.ok ? "1" : "0") + (r.reused ? " 1\n" : " 0\n") + r.line;
+}
+
+SampleRecord DecodeRecord(std::size_t index, const std::string& payload) {
+    return SampleRecord{index, payload.compare(0, 1, "1") == 0, payload.compare(2, 1, "1") == 0,
+                        payload.substr(4)};
 }
 
 }  // namespace
@@ -120,46 +127,44 @@ std::vector<std::size_t> ShardIndices(std::size_t count, std::size_t shard, std:
 
 DatasetSummary RunDataset(const scenegen::DatasetSpec& spec,
                           const DatasetContext& context,
-                          const DatasetOptions& options) {
+                          const DatasetOptions& options,
+                          const DistributedSession& session) {
     const auto start = std::chrono::steady_clock::now();
-    io::EnsureDirectory(context.out_dir / "samples");
+    if (session.rank() == 0) {
+        io::EnsureDirectory(context.out_dir / "samples");
+    }
+    session.Barrier();  // the directory exists before any rank writes into it
     const std::vector<std::size_t> indices =
         ShardIndices(static_cast<std::size_t>(spec.count), options.shard, options.shards);
-    std::vector<SampleRecord> records(indices.size());
-    std::atomic<std::size_t> next{0};
-    std::mutex mutex;
+    std::map<std::size_t, SampleRecord> records;
     DatasetProgress progress{0, indices.size(), 0, 0.0};
-    const auto work = [&] {
-        for (std::size_t k = next++; k < indices.size(); k = next++) {
-            records[k] = ProduceSample(spec, context, indices[k]);
-            const std::lock_guard<std::mutex> lock(mutex);
-            ++progress.done;
-            progress.failed += records[k].ok ? 0 : 1;
-            progress.elapsed_s =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            if (options.progress) {
-                options.progress(progress);
-            }
+    const auto work = [&](std::size_t i) { return EncodeRecord(ProduceSample(spec, context, i)); };
+    const auto done = [&](std::size_t i, const std::string& payload) {
+        SampleRecord r = DecodeRecord(i, payload);
+        ++progress.done;
+        progress.failed += r.ok ? 0 : 1;
+        progress.elapsed_s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        records[i] = std::move(r);
+        if (options.progress) {
+            options.progress(progress);
         }
     };
-    const int threads =
-        std::max(1, std::min<int>(options.threads, static_cast<int>(indices.size())));
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) {
-        pool.emplace_back(work);
+    (void)DistributeWork(session, indices, options.threads, work, done);
+    DatasetSummary summary;
+    if (session.rank() == 0) {
+        summary = WriteDatasetIndex(spec, context.out_dir, records);
+        summary.seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
-    work();
-    for (std::thread& t : pool) {
-        t.join();
-    }
-    std::map<std::size_t, SampleRecord> by_index;
-    for (SampleRecord& r : records) {
-        by_index[r.index] = std::move(r);
-    }
-    DatasetSummary summary = WriteDatasetIndex(spec, context.out_dir, by_index);
-    summary.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    session.Barrier();
     return summary;
+}
+
+DatasetSummary RunDataset(const scenegen::DatasetSpec& spec,
+                          const DatasetContext& context,
+                          const DatasetOptions& options) {
+    return RunDataset(spec, context, options, DistributedSession::Local());
 }
 
 DatasetSummary WriteDatasetIndex(const scenegen::DatasetSpec& spec,

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "casmap/pipeline/distributed.hpp"
 #include "casmap/scenegen/dataset_spec.hpp"
 
 namespace casmap::pipeline {
@@ -89,8 +90,17 @@ struct DatasetSummary {
                                                     std::size_t shard,
                                                     std::size_t shards);
 
-/// Generates (or resumes) this shard's samples on `options.threads` threads, then writes the
-/// index files (WriteDatasetIndex) over every sample on disk.
+/// Generates (or resumes) this shard's samples, then (rank 0) writes the index files
+/// (WriteDatasetIndex) over every sample on disk. With a session of several MPI ranks, rank 0
+/// hands out indices as ranks finish (distributed.hpp) and runs options.threads local workers;
+/// each rank writes its own sample files (atomically: a rank that dies leaves only finished
+/// samples). Otherwise options.threads threads. Returns the summary on rank 0, zeros elsewhere.
+[[nodiscard]] DatasetSummary RunDataset(const scenegen::DatasetSpec& spec,
+                                        const DatasetContext& context,
+                                        const DatasetOptions& options,
+                                        const DistributedSession& session);
+
+/// RunDataset on local threads only.
 [[nodiscard]] DatasetSummary RunDataset(const scenegen::DatasetSpec& spec,
                                         const DatasetContext& context,
                                         const DatasetOptions& options);

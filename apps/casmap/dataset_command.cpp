@@ -17,7 +17,7 @@
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/dataset_spec_file.hpp"
 #include "casmap/pipeline/dataset.hpp"
-#include "casmap/pipeline/dataset_mpi.hpp"
+#include "casmap/pipeline/distributed.hpp"
 
 namespace casmap::app {
 namespace {
@@ -79,22 +79,19 @@ void RunDatasetCommand(const DatasetFlags& flags, const CommonOptions& common, b
     DatasetContext context;
     context.out_dir = flags.out;
     context.rock_meshes = FindRockMeshes(flags.meshes);
-    io::EnsureDirectory(context.out_dir);
-    DistributedRole role;
-    DatasetSummary s;
-    if (LaunchedByMpi()) {
-        s = RunDatasetDistributed(spec, context, options, role);
-    } else {
-        s = RunDataset(spec, context, options);
+    const DistributedSession session;  // MPI when started by mpirun/srun, else one rank
+    if (session.rank() == 0) {
+        io::EnsureDirectory(context.out_dir);
     }
-    if (role.rank != 0) {
+    const DatasetSummary s = RunDataset(spec, context, options, session);
+    if (session.rank() != 0) {
         return;
     }
     std::printf(
         "dataset %s: %d samples -> %s (%zu generated, %zu reused, %zu failed, %zu pending in "
         "other shards) in %.1f s on %d rank(s)\n",
         spec.name.c_str(), spec.count, flags.out.c_str(), s.generated, s.reused, s.failed,
-        s.pending, s.seconds, role.ranks);
+        s.pending, s.seconds, session.ranks());
     if (s.failed > 0) {
         std::fprintf(stderr, "casmap: %zu sample(s) failed; see status \"failed\" in %s\n",
                      s.failed, (context.out_dir / "manifest.jsonl").c_str());
