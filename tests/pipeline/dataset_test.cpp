@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -147,6 +148,25 @@ TEST(Dataset, SampleCarriesLabelsMapsAndNegativeTruthAndReSimulatesAlone) {
             ASSERT_EQ(again.run.scans[k].beams[i].status, run.scans[k].beams[i].status);
         }
     }
+}
+
+TEST(Dataset, AFailingSampleIsRecordedAndTheRunGoesOn) {
+    scenegen::DatasetSpec spec = SmallSpec(3);
+    spec.scene.kind_weights = {0, 0, 0, 0, 0, 0, 1};  // rocks only
+    spec.scene.clutter_per_m2 = {2.0, 2.0};
+    const fs::path dir = TempDir("failing");
+    DatasetContext context = Context(dir);
+    const fs::path broken = dir / "rock_01.ply";
+    std::ofstream(broken) << "not a mesh\n";
+    context.rock_meshes = {broken};
+    const DatasetSummary s = RunDataset(spec, context, DatasetOptions{2, 0, 1, {}});
+    EXPECT_EQ(s.failed, 3U);
+    const std::string manifest = Slurp(dir / "manifest.jsonl");
+    EXPECT_EQ(std::count(manifest.begin(), manifest.end(), '\n'), 3);
+    EXPECT_NE(manifest.find("\"status\":\"failed\""), std::string::npos) << manifest;
+    EXPECT_NE(manifest.find("rock_01.ply"), std::string::npos) << "the error names the mesh";
+    EXPECT_FALSE(fs::exists(SampleDir(dir, 0) / "sample.json"));
+    EXPECT_TRUE(fs::exists(dir / "card.md"));
 }
 
 TEST(DatasetSpecFile, UnknownKeyAndBadRangeNameFileAndField) {
