@@ -210,6 +210,9 @@ Json Simulate(const scenegen::DatasetSpec& spec,
     line["rig"] = DrawJson(draw);
     line["sensor"] = SensorJson(draw);
     line["pose_error"] = PoseErrorJson(draw);
+    // Start clean: a killed run may have left temporaries or files of an older spec here.
+    std::error_code ec;
+    fs::remove_all(dir, ec);
     io::EnsureDirectory(dir);
     std::vector<std::string> files = WriteScene(context, gs, index, scene_seed, dir);
     const core::Scene scene = io::LoadScene((dir / "scene.yaml").string());
