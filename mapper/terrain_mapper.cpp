@@ -6,114 +6,13 @@
 #include <string>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/mapper/beam_geometry.hpp"
 
 namespace casmap::mapper {
-namespace {
-
-// cos(pitch) from R = Rz Ry Rx: the norm of (r21, r22) = (cp sr, cp cr); never below a tiny
-// positive value so the pitch-90-degree singularity yields finite numbers.
-double CosPitch(const Eigen::Matrix3d& r) {
-    return std::max(std::sqrt(r(2, 1) * r(2, 1) + r(2, 2) * r(2, 2)), 1e-12);
-}
-
-// Walks a trajectory with mostly increasing query times, so the per-beam pose lookup costs a
-// few comparisons instead of a binary search. Position is interpolated linearly, orientation
-// by normalised linear interpolation of the quaternions (nlerp): between samples a few
-// milliseconds apart it differs from Trajectory::PoseAt's slerp by far less than 1e-7 rad, and
-// it needs no trigonometry (the mapper's budget is 100 ns per beam).
-class PoseCursor {
-public:
-    explicit PoseCursor(const core::Trajectory& trajectory) : samples_(trajectory.samples()) {}
-
-    bool At(double t, Eigen::Quaterniond& q, Eigen::Vector3d& o) {
-        if (samples_.empty() || !(t >= samples_.front().stamp_s) || t > samples_.back().stamp_s) {
-            return false;
-        }
-        if (samples_.size() == 1) {
-            q = samples_.front().world_T_sensor.rotation;
-            o = samples_.front().world_T_sensor.translation;
-            return true;
-        }
-        if (t < samples_[k_].stamp_s) {
-            k_ = 0;  // went backwards: restart (rare)
-        }
-        while (k_ + 2 < samples_.size() && samples_[k_ + 1].stamp_s <= t) {
-            ++k_;
-        }
-        const core::TimedPose& a = samples_[k_];
-        const core::TimedPose& b = samples_[k_ + 1];
-        const double u = (t - a.stamp_s) / (b.stamp_s - a.stamp_s);
-        o = a.world_T_sensor.translation +
-            u * (b.world_T_sensor.translation - a.world_T_sensor.translation);
-        const Eigen::Quaterniond& qa = a.world_T_sensor.rotation;
-        Eigen::Quaterniond qb = b.world_T_sensor.rotation;
-        if (qa.dot(qb) < 0.0) {
-            qb.coeffs() = -qb.coeffs();  // the shorter way round, as slerp takes
-        }
-        q.coeffs() = (1.0 - u) * qa.coeffs() + u * qb.coeffs();
-        q.coeffs() *= 1.0 / q.coeffs().norm();  // one division, not four
-        return true;
-    }
-
-private:
-    const std::vector<core::TimedPose>& samples_;
-    std::size_t k_ = 0;
-};
-
-// atan2(y, x) for the small angle changes between two poses (x > 0, |y| < 0.1 x) by its
-// series (error < 1e-9 rad); std::atan2 otherwise.
-double SmallAngle(double y, double x) {
-    if (x > 0.0 && std::abs(y) < 0.1 * x) {
-        const double r = y / x;
-        const double r2 = r * r;
-        return r * (1.0 - r2 * (1.0 / 3.0 - r2 * (1.0 / 5.0 - r2 * (1.0 / 7.0 - r2 / 9.0))));
-    }
-    return std::atan2(y, x);
-}
-
-// Roll and pitch change from the last rows of two rotation matrices (see MotionBetween).
-void AngleChanges(const Eigen::Vector3d& row_before,
-                  const Eigen::Vector3d& row_after,
-                  BeamMotion& m) {
-    m.d_roll_rad = SmallAngle(row_before.z() * row_after.y() - row_before.y() * row_after.z(),
-                              row_before.z() * row_after.z() + row_before.y() * row_after.y());
-    const double c0 = std::max(
-        std::sqrt(row_before.y() * row_before.y() + row_before.z() * row_before.z()), 1e-12);
-    const double c1 =
-        std::max(std::sqrt(row_after.y() * row_after.y() + row_after.z() * row_after.z()), 1e-12);
-    const double s0 = -row_before.x();
-    const double s1 = -row_after.x();
-    m.d_pitch_rad = SmallAngle(c0 * s1 - s0 * c1, c0 * c1 + s0 * s1);
-}
-
-// Last row of the rotation matrix of a unit quaternion.
-Eigen::Vector3d ZRow(const Eigen::Quaterniond& q) {
-    return {2.0 * (q.x() * q.z() - q.w() * q.y()), 2.0 * (q.y() * q.z() + q.w() * q.x()),
-            1.0 - 2.0 * (q.x() * q.x() + q.y() * q.y())};
-}
-
-// Eq. 4 with the beam direction given as cos/sin of its angle.
-double DeltaZMaxCs(
-    const SensorState& state, double ca, double sa, double range_m, double delta_l_m) {
-    const Eigen::Matrix3d& r = state.world_R_sensor;
-    const double cp = CosPitch(r);
-    const double inv_cp = 1.0 / cp;
-    const double d_range = r(2, 0) * ca + r(2, 1) * sa;
-    const double d_roll = range_m * r(2, 2) * sa;
-    const double d_pitch = -range_m * (cp * ca - r(2, 0) * r(2, 1) * inv_cp * sa);
-    const BeamMotion& m = state.motion;
-    // Displacement term: the paper's -dy tan(theta) is the slide of the beam up a vertical
-    // face when the sensor moves dy horizontally with its x axis at pitch theta; a vertical
-    // move shifts z one to one. tan(pitch) = |r20| / cp.
-    const double horizontal = std::sqrt(m.displacement_m.x() * m.displacement_m.x() +
-                                        m.displacement_m.y() * m.displacement_m.y());
-    // Sum of magnitudes: a bound on the change, whatever the signs (paper_reading.md item 3).
-    return std::abs(d_range) * delta_l_m + std::abs(d_roll * m.d_roll_rad) +
-           std::abs(d_pitch * m.d_pitch_rad) + std::abs(m.displacement_m.z()) +
-           horizontal * (std::abs(r(2, 0)) * inv_cp);
-}
-
-}  // namespace
+using detail::AngleChanges;
+using detail::CosPitch;
+using detail::DeltaZMaxCs;
+using detail::ZRow;
 
 void TerrainMapperConfig::Validate() const {
     grid.Validate();
@@ -163,6 +62,21 @@ BeamMotion MotionBetween(const core::Pose& before, const core::Pose& after) {
     return m;
 }
 
+void BeamDirections::Update(const core::Scan& scan) {
+    const std::size_t n = scan.beams.size();
+    if (n == cos.size() && scan.start_angle_rad == start_rad && scan.angle_step_rad == step_rad) {
+        return;
+    }
+    cos.resize(n);
+    sin.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        cos[i] = std::cos(scan.BeamAngle(i));
+        sin[i] = std::sin(scan.BeamAngle(i));
+    }
+    start_rad = scan.start_angle_rad;
+    step_rad = scan.angle_step_rad;
+}
+
 TerrainMapper::TerrainMapper(const TerrainMapperConfig& config) : config_(config) {
     config_.Validate();
     elevation_ = core::MapF(config_.grid.rows, config_.grid.cols, 0.0F);
@@ -174,17 +88,8 @@ bool TerrainMapper::AddPoint(const Eigen::Vector3d& p_world, double dz_max_m) {
     if (!cell) {
         return false;
     }
-    float& h = elevation_.at(cell->row, cell->col);
-    float& c = certainty_.at(cell->row, cell->col);
-    const double z = p_world.z();
-    // Eq. 5, against h^t before Eq. 6 updates it; every first hit (c == 0) gets a.
-    if (c == 0.0F || std::abs(z - static_cast<double>(h)) <= std::abs(dz_max_m)) {
-        c += static_cast<float>(config_.a);
-    }
-    // Eq. 6: keep the height of largest magnitude.
-    if (std::abs(z) > std::abs(static_cast<double>(h))) {
-        h = static_cast<float>(z);
-    }
+    detail::UpdateCell(elevation_.at(cell->row, cell->col), certainty_.at(cell->row, cell->col),
+                       p_world.z(), dz_max_m, config_.a);
     return true;
 }
 
@@ -204,50 +109,15 @@ void TerrainMapper::AddBeamCs(const SensorState& state, double ca, double sa, do
 }
 
 void TerrainMapper::AddScan(const core::Scan& scan, const core::Trajectory& world_T_sensor) {
-    const std::size_t n = scan.beams.size();
-    stats_.beams_seen += n;
-    if (world_T_sensor.empty()) {
-        stats_.beams_no_pose += n;
-        return;
-    }
-    // Beam directions, recomputed only when the scan geometry changes.
-    if (n != beam_cos_.size() || scan.start_angle_rad != table_start_rad_ ||
-        scan.angle_step_rad != table_step_rad_) {
-        beam_cos_.resize(n);
-        beam_sin_.resize(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            beam_cos_[i] = std::cos(scan.BeamAngle(i));
-            beam_sin_[i] = std::sin(scan.BeamAngle(i));
-        }
-        table_start_rad_ = scan.start_angle_rad;
-        table_step_rad_ = scan.angle_step_rad;
-    }
-    PoseCursor now(world_T_sensor);
-    PoseCursor before(world_T_sensor);
-    const double start_s = world_T_sensor.StartTime();
-    Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
-    Eigen::Quaterniond q0 = Eigen::Quaterniond::Identity();
-    Eigen::Vector3d o0 = Eigen::Vector3d::Zero();
-    SensorState state;
-    for (std::size_t i = 0; i < n; ++i) {
-        const core::Beam& beam = scan.beams[i];
-        if (beam.status != core::BeamStatus::kOk) {
-            ++stats_.beams_not_ok;
-            continue;
-        }
-        const double t = scan.BeamTime(i);
-        if (!now.At(t, q, state.origin_m)) {
-            ++stats_.beams_no_pose;
-            continue;
-        }
-        // The previous measurement was one scan period earlier; before the trajectory
-        // starts, the motion since its start stands in (zero at the very first pose).
-        before.At(std::max(t - config_.scan_period_s, start_s), q0, o0);
-        state.world_R_sensor = q.toRotationMatrix();
-        state.motion.displacement_m = state.origin_m - o0;
-        AngleChanges(ZRow(q0), state.world_R_sensor.row(2).transpose(), state.motion);
-        AddBeamCs(state, beam_cos_[i], beam_sin_[i], static_cast<double>(beam.range_m));
-    }
+    dirs_.Update(scan);
+    detail::ForEachBeamPoint(scan, world_T_sensor, dirs_, config_.scan_period_s, config_.delta_l_m,
+                             stats_, [this](const Eigen::Vector3d& p_world, double dz_max_m) {
+                                 if (AddPoint(p_world, dz_max_m)) {
+                                     ++stats_.beams_mapped;
+                                 } else {
+                                     ++stats_.beams_outside;
+                                 }
+                             });
 }
 
 }  // namespace casmap::mapper

@@ -70,6 +70,14 @@ struct MapperStats {
     std::uint64_t beams_mapped = 0;
 };
 
+/// Cosine and sine of every beam angle of a scan geometry, recomputed only when it changes.
+struct BeamDirections {
+    std::vector<double> cos, sin;
+    double start_rad = 0.0;
+    double step_rad = 0.0;
+    void Update(const core::Scan& scan);  // no-op while the geometry stays the same
+};
+
 /// Elevation map H and certainty map C built by Eq. 1-6. Unknown cells hold elevation 0 and
 /// certainty 0, as in the paper. Certainty is a float count (multiples of a).
 class TerrainMapper {
@@ -98,9 +106,7 @@ private:
     core::MapF elevation_;
     core::MapF certainty_;
     MapperStats stats_;
-    std::vector<double> beam_cos_, beam_sin_;  // per-beam direction of the last scan geometry
-    double table_start_rad_ = 0.0;
-    double table_step_rad_ = 0.0;
+    BeamDirections dirs_;  // per-beam direction of the last scan geometry
 };
 
 }  // namespace casmap::mapper

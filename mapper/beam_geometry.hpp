@@ -1,0 +1,197 @@
+#pragma once
+
+// Per-beam math of Eq. 1-6 shared by the offline TerrainMapper and the live ActiveWindow:
+// the pose of every beam (interpolated at its own time), its world point (Eq. 1), its
+// Delta z_max (Eq. 4) and the cell update of Eq. 5-6. Inline so both hot loops compile to the
+// same instructions, which keeps the live window's cells bit for bit equal to the offline map's.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "casmap/core/scan.hpp"
+#include "casmap/core/trajectory.hpp"
+#include "casmap/mapper/terrain_mapper.hpp"
+
+namespace casmap::mapper::detail {
+
+// cos(pitch) from R = Rz Ry Rx: the norm of (r21, r22) = (cp sr, cp cr); never below a tiny
+// positive value so the pitch-90-degree singularity yields finite numbers.
+inline double CosPitch(const Eigen::Matrix3d& r) {
+    return std::max(std::sqrt(r(2, 1) * r(2, 1) + r(2, 2) * r(2, 2)), 1e-12);
+}
+
+// Walks a trajectory with mostly increasing query times, so the per-beam pose lookup costs a
+// few comparisons instead of a binary search. Position is interpolated linearly, orientation
+// by normalised linear interpolation of the quaternions (nlerp): between samples a few
+// milliseconds apart it differs from Trajectory::PoseAt's slerp by far less than 1e-7 rad, and
+// it needs no trigonometry (the mapper's budget is 100 ns per beam).
+class PoseCursor {
+public:
+    explicit PoseCursor(const core::Trajectory& trajectory) : samples_(trajectory.samples()) {}
+
+    bool At(double t, Eigen::Quaterniond& q, Eigen::Vector3d& o) {
+        if (samples_.empty() || !(t >= samples_.front().stamp_s) || t > samples_.back().stamp_s) {
+            return false;
+        }
+        if (samples_.size() == 1) {
+            q = samples_.front().world_T_sensor.rotation;
+            o = samples_.front().world_T_sensor.translation;
+            return true;
+        }
+        if (t < samples_[k_].stamp_s) {
+            k_ = 0;  // went backwards: restart (rare)
+        }
+        // The last sample at or before t (at most size - 2): a step or two normally, a binary
+        // search on the first query of a scan into a long trajectory.
+        if (k_ + 2 < samples_.size() && samples_[k_ + 1].stamp_s <= t) {
+            ++k_;
+            if (k_ + 2 < samples_.size() && samples_[k_ + 1].stamp_s <= t) {
+                const auto first = samples_.begin() + static_cast<std::ptrdiff_t>(k_ + 1);
+                const auto last = samples_.end() - 1;
+                const auto it = std::upper_bound(
+                    first, last, t,
+                    [](double x, const core::TimedPose& p) { return x < p.stamp_s; });
+                k_ = static_cast<std::size_t>(it - samples_.begin()) - 1;
+            }
+        }
+        const core::TimedPose& a = samples_[k_];
+        const core::TimedPose& b = samples_[k_ + 1];
+        const double u = (t - a.stamp_s) / (b.stamp_s - a.stamp_s);
+        o = a.world_T_sensor.translation +
+            u * (b.world_T_sensor.translation - a.world_T_sensor.translation);
+        const Eigen::Quaterniond& qa = a.world_T_sensor.rotation;
+        Eigen::Quaterniond qb = b.world_T_sensor.rotation;
+        if (qa.dot(qb) < 0.0) {
+            qb.coeffs() = -qb.coeffs();  // the shorter way round, as slerp takes
+        }
+        q.coeffs() = (1.0 - u) * qa.coeffs() + u * qb.coeffs();
+        q.coeffs() *= 1.0 / q.coeffs().norm();  // one division, not four
+        return true;
+    }
+
+private:
+    const std::vector<core::TimedPose>& samples_;
+    std::size_t k_ = 0;
+};
+
+// atan2(y, x) for the small angle changes between two poses (x > 0, |y| < 0.1 x) by its
+// series (error < 1e-9 rad); std::atan2 otherwise.
+inline double SmallAngle(double y, double x) {
+    if (x > 0.0 && std::abs(y) < 0.1 * x) {
+        const double r = y / x;
+        const double r2 = r * r;
+        return r * (1.0 - r2 * (1.0 / 3.0 - r2 * (1.0 / 5.0 - r2 * (1.0 / 7.0 - r2 / 9.0))));
+    }
+    return std::atan2(y, x);
+}
+
+// Roll and pitch change from the last rows of two rotation matrices (see MotionBetween).
+inline void AngleChanges(const Eigen::Vector3d& row_before,
+                         const Eigen::Vector3d& row_after,
+                         BeamMotion& m) {
+    m.d_roll_rad = SmallAngle(row_before.z() * row_after.y() - row_before.y() * row_after.z(),
+                              row_before.z() * row_after.z() + row_before.y() * row_after.y());
+    const double c0 = std::max(
+        std::sqrt(row_before.y() * row_before.y() + row_before.z() * row_before.z()), 1e-12);
+    const double c1 =
+        std::max(std::sqrt(row_after.y() * row_after.y() + row_after.z() * row_after.z()), 1e-12);
+    const double s0 = -row_before.x();
+    const double s1 = -row_after.x();
+    m.d_pitch_rad = SmallAngle(c0 * s1 - s0 * c1, c0 * c1 + s0 * s1);
+}
+
+// Last row of the rotation matrix of a unit quaternion.
+inline Eigen::Vector3d ZRow(const Eigen::Quaterniond& q) {
+    return {2.0 * (q.x() * q.z() - q.w() * q.y()), 2.0 * (q.y() * q.z() + q.w() * q.x()),
+            1.0 - 2.0 * (q.x() * q.x() + q.y() * q.y())};
+}
+
+// Eq. 4 with the beam direction given as cos/sin of its angle.
+inline double DeltaZMaxCs(
+    const SensorState& state, double ca, double sa, double range_m, double delta_l_m) {
+    const Eigen::Matrix3d& r = state.world_R_sensor;
+    const double cp = CosPitch(r);
+    const double inv_cp = 1.0 / cp;
+    const double d_range = r(2, 0) * ca + r(2, 1) * sa;
+    const double d_roll = range_m * r(2, 2) * sa;
+    const double d_pitch = -range_m * (cp * ca - r(2, 0) * r(2, 1) * inv_cp * sa);
+    const BeamMotion& m = state.motion;
+    // Displacement term: the paper's -dy tan(theta) is the slide of the beam up a vertical
+    // face when the sensor moves dy horizontally with its x axis at pitch theta; a vertical
+    // move shifts z one to one. tan(pitch) = |r20| / cp.
+    const double horizontal = std::sqrt(m.displacement_m.x() * m.displacement_m.x() +
+                                        m.displacement_m.y() * m.displacement_m.y());
+    // Sum of magnitudes: a bound on the change, whatever the signs (paper_reading.md item 3).
+    return std::abs(d_range) * delta_l_m + std::abs(d_roll * m.d_roll_rad) +
+           std::abs(d_pitch * m.d_pitch_rad) + std::abs(m.displacement_m.z()) +
+           horizontal * (std::abs(r(2, 0)) * inv_cp);
+}
+
+/// Eq. 5 and Eq. 6 on one cell (h in m, c in counts) for a world height z with its
+/// Delta z_max and certainty increment a.
+inline void UpdateCell(float& h, float& c, double z, double dz_max_m, int a) {
+    // Eq. 5, against h^t before Eq. 6 updates it; every first hit (c == 0) gets a.
+    if (c == 0.0F || std::abs(z - static_cast<double>(h)) <= std::abs(dz_max_m)) {
+        c += static_cast<float>(a);
+    }
+    // Eq. 6: keep the height of largest magnitude.
+    if (std::abs(z) > std::abs(static_cast<double>(h))) {
+        h = static_cast<float>(z);
+    }
+}
+
+/// Eq. 1-4 for every valid beam of `scan` with the pose at its own time:
+/// `point(p_world, dz_max_m)` is called per beam that has a pose; `stats` counts beams seen,
+/// not ok and without pose. `dirs` must be Update()d for the scan.
+template <typename PointFn>
+void ForEachBeamPoint(const core::Scan& scan,
+                      const core::Trajectory& world_T_sensor,
+                      const BeamDirections& dirs,
+                      double scan_period_s,
+                      double delta_l_m,
+                      MapperStats& stats,
+                      PointFn&& point) {
+    const std::size_t n = scan.beams.size();
+    stats.beams_seen += n;
+    if (world_T_sensor.empty()) {
+        stats.beams_no_pose += n;
+        return;
+    }
+    PoseCursor now(world_T_sensor);
+    PoseCursor before(world_T_sensor);
+    const double start_s = world_T_sensor.StartTime();
+    Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+    Eigen::Quaterniond q0 = Eigen::Quaterniond::Identity();
+    Eigen::Vector3d o0 = Eigen::Vector3d::Zero();
+    SensorState state;
+    for (std::size_t i = 0; i < n; ++i) {
+        const core::Beam& beam = scan.beams[i];
+        if (beam.status != core::BeamStatus::kOk) {
+            ++stats.beams_not_ok;
+            continue;
+        }
+        const double t = scan.BeamTime(i);
+        if (!now.At(t, q, state.origin_m)) {
+            ++stats.beams_no_pose;
+            continue;
+        }
+        // The previous measurement was one scan period earlier; before the trajectory
+        // starts, the motion since its start stands in (zero at the very first pose).
+        before.At(std::max(t - scan_period_s, start_s), q0, o0);
+        state.world_R_sensor = q.toRotationMatrix();
+        state.motion.displacement_m = state.origin_m - o0;
+        AngleChanges(ZRow(q0), state.world_R_sensor.row(2).transpose(), state.motion);
+        const double ca = dirs.cos[i];
+        const double sa = dirs.sin[i];
+        const double range_m = static_cast<double>(beam.range_m);
+        const Eigen::Matrix3d& r = state.world_R_sensor;
+        const Eigen::Vector3d p_world =
+            r.col(0) * (range_m * ca) + r.col(1) * (range_m * sa) + state.origin_m;
+        point(p_world, DeltaZMaxCs(state, ca, sa, range_m, delta_l_m));
+    }
+}
+
+}  // namespace casmap::mapper::detail
