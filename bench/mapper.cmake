@@ -3,3 +3,8 @@ if(TARGET casmap::mapper)
     casmap_add_benchmark(mapper_bench SOURCES ${CMAKE_CURRENT_LIST_DIR}/mapper_bench.cpp
         DEPS casmap::mapper opencv_core opencv_imgproc)
 endif()
+# BM_ActiveWindowScan: the live window's per-scan update + row filter, p50/p99 per scan.
+if(TARGET casmap::mapper)
+    casmap_add_benchmark(active_window_bench
+        SOURCES ${CMAKE_CURRENT_LIST_DIR}/active_window_bench.cpp DEPS casmap::mapper)
+endif()
