@@ -10,6 +10,42 @@
 
 namespace casmap::drivers {
 
+std::optional<core::TimedPose> ParsePoseLine(std::string line, const std::string& where) {
+    const std::size_t hash = line.find('#');
+    if (hash != std::string::npos) {
+        line.resize(hash);
+    }
+    std::istringstream fields(line);
+    std::vector<double> v;
+    std::string token;
+    while (fields >> token) {
+        char* end = nullptr;
+        const double x = std::strtod(token.c_str(), &end);
+        if (end == nullptr || *end != '\0' || !std::isfinite(x)) {
+            throw MakeInputError(where, "column " + std::to_string(v.size() + 1), token,
+                                 "a finite number");
+        }
+        v.push_back(x);
+    }
+    if (v.empty()) {
+        return std::nullopt;
+    }
+    if (v.size() != 8) {
+        throw MakeInputError(where, "columns", std::to_string(v.size()),
+                             "8: stamp_s x_m y_m z_m qx qy qz qw");
+    }
+    const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
+    if (std::abs(q.norm() - 1.0) > 1e-3) {
+        throw MakeInputError(where, "quaternion norm", std::to_string(q.norm()),
+                             "unit length within 1e-3");
+    }
+    core::TimedPose p;
+    p.stamp_s = v[0];
+    p.world_T_sensor.translation = Eigen::Vector3d(v[1], v[2], v[3]);
+    p.world_T_sensor.rotation = q.normalized();
+    return p;
+}
+
 core::Trajectory ReadPoseFile(const std::string& path) {
     std::ifstream in(path);
     if (!in) {
@@ -21,42 +57,16 @@ core::Trajectory ReadPoseFile(const std::string& path) {
     while (std::getline(in, line)) {
         ++line_no;
         const std::string where = path + ":" + std::to_string(line_no);
-        const std::size_t hash = line.find('#');
-        if (hash != std::string::npos) {
-            line.resize(hash);
-        }
-        std::istringstream fields(line);
-        std::vector<double> v;
-        std::string token;
-        while (fields >> token) {
-            char* end = nullptr;
-            const double x = std::strtod(token.c_str(), &end);
-            if (end == nullptr || *end != '\0' || !std::isfinite(x)) {
-                throw MakeInputError(where, "column " + std::to_string(v.size() + 1), token,
-                                     "a finite number");
-            }
-            v.push_back(x);
-        }
-        if (v.empty()) {
+        const std::optional<core::TimedPose> p = ParsePoseLine(line, where);
+        if (!p) {
             continue;
         }
-        if (v.size() != 8) {
-            throw MakeInputError(where, "columns", std::to_string(v.size()),
-                                 "8: stamp_s x_m y_m z_m qx qy qz qw");
+        if (!samples.empty() && !(p->stamp_s > samples.back().stamp_s)) {
+            char stamp[64];
+            std::snprintf(stamp, sizeof(stamp), "%.17g", p->stamp_s);
+            throw MakeInputError(where, "stamp_s", stamp, "strictly increasing");
         }
-        const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
-        if (std::abs(q.norm() - 1.0) > 1e-3) {
-            throw MakeInputError(where, "quaternion norm", std::to_string(q.norm()),
-                                 "unit length within 1e-3");
-        }
-        if (!samples.empty() && !(v[0] > samples.back().stamp_s)) {
-            throw MakeInputError(where, "stamp_s", token, "strictly increasing");
-        }
-        core::TimedPose p;
-        p.stamp_s = v[0];
-        p.world_T_sensor.translation = Eigen::Vector3d(v[1], v[2], v[3]);
-        p.world_T_sensor.rotation = q.normalized();
-        samples.push_back(p);
+        samples.push_back(*p);
     }
     if (samples.empty()) {
         throw MakeInputError(path, "pose file", "", "holds no poses");

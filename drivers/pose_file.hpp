@@ -4,6 +4,7 @@
 //   stamp_s x_m y_m z_m qx qy qz qw
 // whitespace separated, '#' starts a comment, stamps strictly increasing.
 
+#include <optional>
 #include <string>
 
 #include "casmap/core/trajectory.hpp"
@@ -14,6 +15,12 @@ namespace casmap::drivers {
 /// file, wrong column count, non-numbers, a quaternion far from unit length, stamps not
 /// strictly increasing, no poses).
 [[nodiscard]] core::Trajectory ReadPoseFile(const std::string& path);
+
+/// One line of a pose file: the pose, or nullopt for a blank or comment-only line. Throws
+/// InputError naming `where` (e.g. "poses.txt:12"), the column and the rule. Does not check
+/// the order of stamps (the caller knows the previous one).
+[[nodiscard]] std::optional<core::TimedPose> ParsePoseLine(std::string line,
+                                                           const std::string& where);
 
 /// The pose-file text of `poses` with every stamp shifted by `offset_s`.
 [[nodiscard]] std::string PoseFileText(const core::Trajectory& poses, double offset_s = 0.0);
