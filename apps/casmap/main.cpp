@@ -28,6 +28,7 @@ void AddServeCommand(CLI::App& app, CommonOptions& common);
 void AddRecordCommand(CLI::App& app, CommonOptions& common);
 void AddFilterCommand(CLI::App& app, CommonOptions& common);
 void AddDemoCommand(CLI::App& app, CommonOptions& common);
+void AddLiveCommand(CLI::App& app, CommonOptions& common);
 // END COMMAND DECLARATIONS
 }  // namespace casmap::app
 
@@ -55,6 +56,7 @@ int main(int argc, char** argv) {
     AddRecordCommand(app, common);
     AddFilterCommand(app, common);
     AddDemoCommand(app, common);
+    AddLiveCommand(app, common);
     // END COMMAND REGISTRATION
     try {
         app.parse(argc, argv);

@@ -1,0 +1,410 @@
+#include "casmap/pipeline/live.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <thread>
+
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/lms200_driver.hpp"
+#include "casmap/io/atomic_file.hpp"
+#include "casmap/io/run_file.hpp"
+#include "casmap/pipeline/map_run.hpp"
+
+namespace casmap::pipeline {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+class DeviceSource final : public LiveScanSource {
+public:
+    DeviceSource(const std::string& device, int baud, double connect_timeout_s)
+        : driver_(MakeConfig(device, baud)),
+          device_(device),
+          connect_timeout_s_(connect_timeout_s) {}
+
+    void Start() override {
+        // A missing device or bad settings are InputErrors (not retried); a device that is
+        // there but silent is retried: a scanner still powering up or a serve restarting.
+        const Clock::time_point deadline =
+            Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                               std::chrono::duration<double>(connect_timeout_s_));
+        for (;;) {
+            try {
+                driver_.Connect();
+                return;
+            } catch (const drivers::SerialError&) {
+                if (Clock::now() >= deadline) {
+                    throw;
+                }
+                ++connect_retries_;
+                std::this_thread::sleep_for(std::chrono::seconds(1));
+            }
+        }
+    }
+    std::optional<core::Scan> Next(double timeout_s) override {
+        return driver_.NextScan(timeout_s);
+    }
+    LiveSourceCounters counters() const override {
+        const drivers::DriverCounters c = driver_.counters();
+        return {c.crc_errors, c.resyncs, c.reconnects + connect_retries_, c.bytes};
+    }
+    std::optional<core::Lms200Format> format() const override {
+        return driver_.connected() || driver_.info().baud != 0
+                   ? std::optional<core::Lms200Format>(driver_.info().format)
+                   : std::nullopt;
+    }
+    std::string name() const override { return device_; }
+    void Stop() override { driver_.Close(); }
+
+private:
+    static drivers::DriverConfig MakeConfig(const std::string& device, int baud) {
+        drivers::DriverConfig c;
+        c.device = device;
+        c.baud = baud;
+        return c;
+    }
+    drivers::Lms200Driver driver_;
+    std::string device_;
+    double connect_timeout_s_;
+    std::uint64_t connect_retries_ = 0;
+};
+
+// The session's state: what was received, what waits for poses, the window.
+class Session {
+public:
+    Session(const LiveConfig& config, LiveScanSource& scans, drivers::PoseStream& poses)
+        : config_(config), scans_(scans), poses_(poses), window_(config.window) {}
+
+    LiveResult Run(const std::atomic<bool>& stop, const LiveStatusFn& on_status);
+
+private:
+    enum class Coverage { kCovered, kWait, kNever };
+    struct Pending {
+        std::size_t index;
+        Clock::time_point received;
+    };
+    Coverage Covers(const core::Scan& scan, std::size_t& first, std::size_t& last) const;
+    void ProcessPending(Clock::time_point now, bool final);
+    LiveStatus Status(Clock::time_point now, bool finished);
+    void WriteSnapshots() const;
+    void WriteFinal(const LiveStatus& status, LiveResult& result) const;
+
+    LiveConfig config_;
+    LiveScanSource& scans_;
+    drivers::PoseStream& poses_;
+    mapper::ActiveWindow window_;
+    std::vector<core::Scan> received_;
+    std::vector<core::TimedPose> pose_log_;
+    std::deque<Pending> pending_;
+    std::vector<double> latency_ms_;  // ring of the last kLatencies
+    std::size_t latency_next_ = 0;
+    std::uint64_t mapped_ = 0;
+    std::uint64_t dropped_ = 0;
+    Clock::time_point start_;
+    Clock::time_point last_status_;
+    std::uint64_t scans_at_last_status_ = 0;
+    static constexpr std::size_t kLatencies = 1000;
+};
+
+Session::Coverage Session::Covers(const core::Scan& scan,
+                                  std::size_t& first,
+                                  std::size_t& last) const {
+    const double t0 = scan.stamp_s;
+    const double t1 = scan.BeamTime(scan.beams.empty() ? 0 : scan.beams.size() - 1);
+    const auto by_stamp = [](const core::TimedPose& p, double t) { return p.stamp_s < t; };
+    if (pose_log_.empty()) {
+        return Coverage::kWait;
+    }
+    if (pose_log_.front().stamp_s > t0) {
+        return Coverage::kNever;  // poses started after the scan
+    }
+    const auto end = std::lower_bound(pose_log_.begin(), pose_log_.end(), t1, by_stamp);
+    if (end == pose_log_.end()) {
+        return Coverage::kWait;  // poses lag behind the scan
+    }
+    // The last sample at or before t (poses_log_.front() <= t0 here, so at_t0 exists).
+    const auto at_or_before = [&](double t) {
+        auto it =
+            std::upper_bound(pose_log_.begin(), pose_log_.end(), t,
+                             [](double x, const core::TimedPose& p) { return x < p.stamp_s; });
+        return it == pose_log_.begin() ? it : it - 1;
+    };
+    // From one scan period before beam 0: the motion term of Eq. 4 looks one period back.
+    const auto begin = at_or_before(t0 - config_.window.scan_period_s);
+    const auto at_t0 = at_or_before(t0);
+    for (auto it = at_t0; it != end; ++it) {
+        if ((it + 1)->stamp_s - it->stamp_s > config_.pose_tolerance_s) {
+            return Coverage::kNever;  // a hole in the poses: never map with a stale pose
+        }
+    }
+    first = static_cast<std::size_t>(begin - pose_log_.begin());
+    last = static_cast<std::size_t>(end - pose_log_.begin());
+    return Coverage::kCovered;
+}
+
+void Session::ProcessPending(Clock::time_point now, bool final) {
+    while (!pending_.empty()) {
+        const Pending p = pending_.front();
+        const core::Scan& scan = received_[p.index];
+        std::size_t first = 0;
+        std::size_t last = 0;
+        const Coverage c = Covers(scan, first, last);
+        if (c == Coverage::kWait && !final && Seconds(now - p.received) < config_.pose_wait_s) {
+            return;  // keep the order: later scans wait behind it
+        }
+        pending_.pop_front();
+        if (c != Coverage::kCovered) {
+            ++dropped_;
+            continue;
+        }
+        const core::Trajectory slice(std::vector<core::TimedPose>(
+            pose_log_.begin() + static_cast<std::ptrdiff_t>(first),
+            pose_log_.begin() + static_cast<std::ptrdiff_t>(last) + 1));
+        (void)window_.AddScan(scan, slice);
+        ++mapped_;
+        const double ms = Seconds(Clock::now() - p.received) * 1e3;
+        if (latency_ms_.size() < kLatencies) {
+            latency_ms_.push_back(ms);
+        } else {
+            latency_ms_[latency_next_] = ms;
+            latency_next_ = (latency_next_ + 1) % kLatencies;
+        }
+    }
+}
+
+LiveStatus Session::Status(Clock::time_point now, bool finished) {
+    LiveStatus s;
+    s.elapsed_s = Seconds(now - start_);
+    s.scans = received_.size();
+    s.scans_mapped = mapped_;
+    s.dropped = dropped_;
+    s.poses = pose_log_.size();
+    s.rows_filtered = window_.stats().rows_filtered;
+    const double span = Seconds(now - last_status_);
+    if (span > 0.0) {
+        s.scans_per_s = static_cast<double>(s.scans - scans_at_last_status_) / span;
+    }
+    if (finished && s.elapsed_s > 0.0) {
+        s.scans_per_s = static_cast<double>(s.scans) / s.elapsed_s;
+    }
+    scans_at_last_status_ = s.scans;
+    last_status_ = now;
+    if (!latency_ms_.empty()) {
+        std::vector<double> l = latency_ms_;
+        std::sort(l.begin(), l.end());
+        const auto at = [&](double q) {
+            return l[std::min(l.size() - 1,
+                              static_cast<std::size_t>(q * static_cast<double>(l.size())))];
+        };
+        s.latency_p50_ms = at(0.5);
+        s.latency_p99_ms = at(0.99);
+    }
+    s.source = scans_.counters();
+    s.finished = finished;
+    return s;
+}
+
+void Session::WriteSnapshots() const {
+    core::MapF h;
+    core::MapF c;
+    window_.Snapshot(h, c);
+    const core::Raster<std::uint8_t> unknown = UnknownMask(c);
+    WriteMapFiles(config_.out_dir, "window_elevation", h, "active window elevation", "m", &unknown);
+    WriteMapFiles(config_.out_dir, "window_certainty", c, "active window certainty", "counts",
+                  &unknown);
+    const mapper::ObstacleRaster o = window_.obstacles().ToRaster();
+    if (o.grid.rows > 0) {
+        core::Raster<std::uint8_t> none(o.grid.rows, o.grid.cols, 0);
+        for (std::size_t i = 0; i < none.data.size(); ++i) {
+            none.data[i] = o.count.data[i] == 0 ? 1 : 0;
+        }
+        WriteMapFiles(config_.out_dir, "obstacle_elevation", o.elevation,
+                      "obstacle map elevation (highest filtered)", "m", &none);
+        WriteMapFiles(config_.out_dir, "obstacle_certainty", o.certainty, "obstacle map certainty",
+                      "counts", &none);
+    }
+}
+
+std::string ConfigYaml(const LiveConfig& c, const std::string& source) {
+    const mapper::ActiveWindowConfig& w = c.window;
+    std::string y = "# casmap live: the effective configuration\n";
+    y += "source: \"" + source + "\"\n";
+    y += "window: {rows: " + std::to_string(w.rows) + ", cols: " + std::to_string(w.cols) +
+         ", m: " + std::to_string(w.m) + ", cell_m: " + FormatNumber(w.cell_m) +
+         ", origin_x_m: " + FormatNumber(w.origin_x_m) +
+         ", origin_y_m: " + FormatNumber(w.origin_y_m) +
+         ", heading_step_rad: " + FormatNumber(w.heading_step_rad) + "}\n";
+    y += "mapper: {a: " + std::to_string(w.a) + ", delta_l_m: " + FormatNumber(w.delta_l_m) +
+         ", scan_period_s: " + FormatNumber(w.scan_period_s) + "}\n";
+    y += "cas: {k: " + std::to_string(w.cas.k) + ", speed_m_s: " + FormatNumber(w.cas.speed_m_s) +
+         ", A: " + FormatNumber(w.cas.EffectiveA()) + ", G: " + FormatNumber(w.cas.EffectiveG()) +
+         "}\n";
+    y += "obstacle_cell_m: " + FormatNumber(w.obstacle_cell_m) + "\n";
+    y += "pose_tolerance_s: " + FormatNumber(c.pose_tolerance_s) + "\n";
+    y += "pose_wait_s: " + FormatNumber(c.pose_wait_s) + "\n";
+    return y;
+}
+
+void Session::WriteFinal(const LiveStatus& status, LiveResult& result) const {
+    WriteSnapshots();
+    io::WriteTextAtomically(config_.out_dir / "status.json", StatusJson(status, window_));
+    io::WriteTextAtomically(config_.out_dir / "config.yaml", ConfigYaml(config_, scans_.name()));
+    if (received_.empty()) {
+        return;
+    }
+    io::RunData run;
+    run.scans = received_;
+    if (!pose_log_.empty()) {
+        run.poses = core::Trajectory(pose_log_);
+    }
+    run.format = scans_.format();
+    run.config_yaml = ConfigYaml(config_, scans_.name());
+    result.run_file = config_.out_dir / "run.h5";
+    io::WriteRunFile(result.run_file, run);
+}
+
+LiveResult Session::Run(const std::atomic<bool>& stop, const LiveStatusFn& on_status) {
+    LiveResult result;
+    start_ = Clock::now();
+    last_status_ = start_;
+    Clock::time_point last_scan = start_;
+    Clock::time_point last_snapshot = start_;
+    Clock::time_point last_report = start_;
+    std::vector<core::TimedPose> fresh;
+    try {
+        while (!stop) {
+            const Clock::time_point now = Clock::now();
+            if ((config_.duration_s > 0.0 && Seconds(now - start_) >= config_.duration_s) ||
+                (config_.max_scans > 0 && received_.size() >= config_.max_scans) ||
+                (scans_.finished() && pending_.empty())) {
+                break;
+            }
+            if (Seconds(now - last_scan) >= config_.timeout_s) {
+                result.timed_out = true;
+                break;
+            }
+            std::optional<core::Scan> scan = scans_.Next(0.05);
+            const Clock::time_point got = Clock::now();
+            fresh.clear();
+            poses_.Poll(fresh);
+            pose_log_.insert(pose_log_.end(), fresh.begin(), fresh.end());
+            if (scan) {
+                last_scan = got;
+                pending_.push_back({received_.size(), got});
+                received_.push_back(std::move(*scan));
+            }
+            ProcessPending(got, false);
+            if (Seconds(got - last_report) >= config_.status_every_s) {
+                last_report = got;
+                const LiveStatus s = Status(got, false);
+                io::WriteTextAtomically(config_.out_dir / "status.json", StatusJson(s, window_));
+                if (on_status) {
+                    on_status(s);
+                }
+            }
+            if (config_.snapshot_every_s > 0.0 &&
+                Seconds(got - last_snapshot) >= config_.snapshot_every_s) {
+                last_snapshot = got;
+                WriteSnapshots();
+            }
+        }
+        fresh.clear();
+        poses_.Poll(fresh);
+        pose_log_.insert(pose_log_.end(), fresh.begin(), fresh.end());
+        ProcessPending(Clock::now(), true);
+    } catch (...) {
+        // Nothing received is lost: the run file and maps are written, then the error goes on.
+        scans_.Stop();
+        LiveResult partial;
+        WriteFinal(Status(Clock::now(), true), partial);
+        throw;
+    }
+    scans_.Stop();
+    result.status = Status(Clock::now(), true);
+    result.window = window_.stats();
+    WriteFinal(result.status, result);
+    if (on_status) {
+        on_status(result.status);
+    }
+    return result;
+}
+
+}  // namespace
+
+std::unique_ptr<LiveScanSource> MakeDeviceSource(const std::string& device,
+                                                 int baud,
+                                                 double connect_timeout_s) {
+    return std::make_unique<DeviceSource>(device, baud, connect_timeout_s);
+}
+
+void TrajectoryPoseStream::Poll(std::vector<core::TimedPose>& out) {
+    if (!sent_) {
+        for (const core::TimedPose& p : poses_.samples()) {
+            (void)Accept(p, out);
+        }
+        sent_ = true;
+    }
+}
+
+void LiveConfig::Validate() const {
+    window.Validate();
+    const auto positive = [](double v, const char* field, bool zero_ok) {
+        if (!(std::isfinite(v) && (v > 0.0 || (zero_ok && v == 0.0)))) {
+            throw MakeInputError("live", field, FormatNumber(v), zero_ok ? ">= 0" : "> 0");
+        }
+    };
+    positive(snapshot_every_s, "snapshot_every_s", true);
+    positive(status_every_s, "status_every_s", false);
+    positive(pose_tolerance_s, "pose_tolerance_s", false);
+    positive(pose_wait_s, "pose_wait_s", true);
+    positive(timeout_s, "timeout_s", false);
+    positive(duration_s, "duration_s", true);
+}
+
+LiveResult RunLive(const LiveConfig& config,
+                   LiveScanSource& scans,
+                   drivers::PoseStream& poses,
+                   const std::atomic<bool>& stop,
+                   const LiveStatusFn& on_status) {
+    config.Validate();
+    io::EnsureDirectory(config.out_dir);
+    scans.Start();
+    Session session(config, scans, poses);
+    return session.Run(stop, on_status);
+}
+
+std::string StatusJson(const LiveStatus& s, const mapper::ActiveWindow& window) {
+    const mapper::ObstacleRaster o = window.obstacles().ToRaster();
+    char buf[2048];
+    std::snprintf(
+        buf, sizeof(buf),
+        "{\"elapsed_s\": %.3f, \"scans\": %llu, \"scans_mapped\": %llu, \"dropped\": %llu, "
+        "\"poses\": %llu, \"rows_filtered\": %llu, \"scans_per_s\": %.2f, "
+        "\"latency_p50_ms\": %.3f, \"latency_p99_ms\": %.3f, \"crc_errors\": %llu, "
+        "\"resyncs\": %llu, \"reconnects\": %llu, \"finished\": %s,\n"
+        " \"window\": {\"rows\": %d, \"cols\": %d, \"m\": %d, \"cell_m\": %s, \"heading_rad\": "
+        "%.9g, \"first_row\": %lld, \"first_col\": %lld, \"origin_x_m\": %s, \"origin_y_m\": %s},\n"
+        " \"obstacle_map\": {\"x0_m\": %.9g, \"y0_m\": %.9g, \"cell_m\": %s, \"rows\": %d, "
+        "\"cols\": %d}}\n",
+        s.elapsed_s, static_cast<unsigned long long>(s.scans),
+        static_cast<unsigned long long>(s.scans_mapped), static_cast<unsigned long long>(s.dropped),
+        static_cast<unsigned long long>(s.poses), static_cast<unsigned long long>(s.rows_filtered),
+        s.scans_per_s, s.latency_p50_ms, s.latency_p99_ms,
+        static_cast<unsigned long long>(s.source.crc_errors),
+        static_cast<unsigned long long>(s.source.resyncs),
+        static_cast<unsigned long long>(s.source.reconnects), s.finished ? "true" : "false",
+        window.config().rows, window.config().cols, window.config().m,
+        FormatNumber(window.config().cell_m).c_str(), window.heading_rad(),
+        static_cast<long long>(window.first_row()), static_cast<long long>(window.first_col()),
+        FormatNumber(window.config().origin_x_m).c_str(),
+        FormatNumber(window.config().origin_y_m).c_str(), o.grid.x0_m, o.grid.y0_m,
+        FormatNumber(o.grid.cell_m).c_str(), o.grid.rows, o.grid.cols);
+    return buf;
+}
+
+}  // namespace casmap::pipeline

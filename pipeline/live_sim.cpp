@@ -1,0 +1,74 @@
+#include "casmap/pipeline/live_sim.hpp"
+
+#include <chrono>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "casmap/io/scene_file.hpp"
+#include "casmap/sim/world.hpp"
+
+namespace casmap::pipeline {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+class SimulatedSource final : public LiveScanSource {
+public:
+    SimulatedSource(io::RunData run, bool realtime, std::string name)
+        : run_(std::move(run)), realtime_(realtime), name_(std::move(name)) {}
+
+    void Start() override { start_ = Clock::now(); }
+
+    std::optional<core::Scan> Next(double timeout_s) override {
+        if (next_ >= run_.scans.size()) {
+            std::this_thread::sleep_for(std::chrono::duration<double>(std::min(timeout_s, 0.01)));
+            return std::nullopt;
+        }
+        const core::Scan& scan = run_.scans[next_];
+        if (realtime_) {
+            // Beam 0 is delivered when its whole sweep would have reached the host.
+            const double last_beam_s =
+                scan.BeamTime(scan.beams.empty() ? 0 : scan.beams.size() - 1);
+            const auto due =
+                start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                             last_beam_s - run_.scans.front().stamp_s));
+            const auto limit = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                  std::chrono::duration<double>(timeout_s));
+            if (due > limit) {
+                std::this_thread::sleep_until(limit);
+                return std::nullopt;
+            }
+            std::this_thread::sleep_until(due);
+        }
+        ++next_;
+        return scan;
+    }
+    bool finished() const override { return next_ >= run_.scans.size(); }
+    std::optional<core::Lms200Format> format() const override { return run_.format; }
+    std::string name() const override { return name_; }
+
+private:
+    io::RunData run_;
+    bool realtime_;
+    std::string name_;
+    std::size_t next_ = 0;
+    Clock::time_point start_;
+};
+
+}  // namespace
+
+SimulatedLive MakeSimulatedSource(const SimFlags& flags, int threads, bool realtime) {
+    SimulatedLive live;
+    live.setup = ResolveSimSetup(flags);
+    const core::Scene scene = io::LoadScene(live.setup.scene_path);
+    const sim::World world(scene);
+    const core::Trajectory true_poses = RigTrajectory(live.setup, scene);
+    SimulatedRun sim = SimulateRun(live.setup, scene, world, true_poses, threads, nullptr, false);
+    live.poses = sim.run.poses;
+    live.scans = std::make_unique<SimulatedSource>(
+        std::move(sim.run), realtime, live.setup.scene_path + " (" + live.setup.motion_name + ")");
+    return live;
+}
+
+}  // namespace casmap::pipeline

@@ -1,0 +1,25 @@
+#pragma once
+
+// The simulator as a live scan source (simulator builds only): the run of `casmap simulate`
+// with the same flags, simulated at start-up, then handed out scan by scan at the scanner's
+// rate (`realtime`: scan i at start + (stamp_i - stamp_0) on the steady clock) or as fast as
+// the session takes them.
+
+#include <memory>
+
+#include "casmap/core/trajectory.hpp"
+#include "casmap/pipeline/live.hpp"
+#include "casmap/pipeline/sim_pipeline.hpp"
+
+namespace casmap::pipeline {
+
+struct SimulatedLive {
+    std::unique_ptr<LiveScanSource> scans;
+    core::Trajectory poses;  // the run's poses (what a pose stream would carry)
+    SimSetup setup;
+};
+
+/// Simulates the run of `flags` (InputError for bad flags, as `casmap simulate`).
+[[nodiscard]] SimulatedLive MakeSimulatedSource(const SimFlags& flags, int threads, bool realtime);
+
+}  // namespace casmap::pipeline
