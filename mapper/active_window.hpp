@@ -4,8 +4,8 @@
 // R x C cells travels with the vehicle, the scanner at the centre of its first row. Each scan
 // updates only rows R-m .. R-1 ahead of the scanner (Eq. 1-6 with per-beam poses, the same
 // arithmetic as TerrainMapper); then each row reaching index R-m is CAS-filtered and its cells
-// registered into a world-fixed ObstacleMap. docs/api/mapper.md "Active window" and
-// docs/paper-notes.md "Active window" state every choice made here.
+// registered into a world-fixed ObstacleMap. docs/api/mapper-active-window.md and
+// docs/paper-notes.md "Sec. IV.B" state every choice made here.
 //
 // Frame: window cells are cells of a lattice of `cell_m` squares anchored at the world point
 // (origin_x_m, origin_y_m) and rotated by the frame heading psi: lattice cell (a, b) covers

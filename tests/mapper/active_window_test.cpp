@@ -238,10 +238,10 @@ TEST(ActiveWindow, TurningRunAgreesWithTheOfflineObstacleMap) {
         }
     }
     ASSERT_GT(both, 1500);
-    // Stated tolerance (docs/api/mapper.md): >= 97% of the cells known to both within 20 mm,
-    // and no more than 5% of them known only to the live map (measured: 99.5% and 2.3%;
-    // the rotated fine cells reach coarse cells at the edge of coverage the offline grid's do
-    // not, and nearest-cell resampling repeats a few cells).
+    // Stated tolerance (docs/api/mapper-active-window.md): >= 97% of the cells known to both
+    // within 20 mm, and no more than 5% of them known only to the live map (measured: 99.5%
+    // and 2.3%; the rotated fine cells reach coarse cells at the edge of coverage the offline
+    // grid's do not, and nearest-cell resampling repeats a few cells).
     EXPECT_GE(close, 0.97 * both) << close << " of " << both;
     EXPECT_LE(live_only, 0.05 * both) << live_only;
 }
