@@ -17,6 +17,7 @@ void FaultConfig::Validate() const {
     CheckRate(crc_rate, "crc");
     CheckRate(garbage_rate, "garbage");
     CheckRate(drop_rate, "drop");
+    CheckRate(collide_rate, "collide");
     if (!(disconnect_period_s >= 0.0)) {
         throw MakeInputError("--faults", "disconnect", std::to_string(disconnect_period_s),
                              "seconds >= 0 (0 = never)");
@@ -37,7 +38,7 @@ FaultConfig ParseFaults(std::string_view spec) {
         const std::string item(spec.substr(at, end - at));
         at = end + 1;
         const std::size_t eq = item.find('=');
-        const std::string rule = "NAME=VALUE with NAME in crc, garbage, drop, disconnect";
+        const std::string rule = "NAME=VALUE with NAME in crc, garbage, drop, collide, disconnect";
         if (eq == std::string::npos) {
             throw MakeInputError("--faults", item, "", rule);
         }
@@ -54,6 +55,8 @@ FaultConfig ParseFaults(std::string_view spec) {
             f.garbage_rate = value;
         } else if (key == "drop") {
             f.drop_rate = value;
+        } else if (key == "collide") {
+            f.collide_rate = value;
         } else if (key == "disconnect") {
             f.disconnect_period_s = value;
         } else {
@@ -77,7 +80,12 @@ void VirtualLms200Config::Validate() const {
         throw MakeInputError("virtual LMS 200", "config bytes", std::to_string(config.bytes.size()),
                              "34 or 32");
     }
-    (void)FormatOf(config);
+    CheckConfigBlock(config, "virtual LMS 200");
+    if (!(config_write_s >= 0.0) || !(reset_s >= 0.0)) {
+        throw MakeInputError("virtual LMS 200", "config_write_s / reset_s",
+                             std::to_string(config_write_s) + " / " + std::to_string(reset_s),
+                             "seconds >= 0");
+    }
     faults.Validate();
 }
 

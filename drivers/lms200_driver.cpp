@@ -1,6 +1,7 @@
 #include "casmap/drivers/lms200_driver.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <thread>
 
 #include "casmap/core/input_error.hpp"
@@ -54,9 +55,45 @@ void DriverConfig::Validate() const {
     CheckPositive(quiet_timeout_s, "quiet_timeout_s");
     CheckPositive(inter_byte_timeout_s, "inter_byte_timeout_s");
     CheckPositive(sync_window_s, "sync_window_s");
+    CheckPositive(write_timeout_s, "write_timeout_s");
+    CheckPositive(reset_timeout_s, "reset_timeout_s");
+    CheckPositive(idle_confirm_s, "idle_confirm_s");
+    if (password.size() != 8) {
+        throw MakeInputError("LMS 200 driver", "password",
+                             "(" + std::to_string(password.size()) + " characters)",
+                             "exactly 8 characters");
+    }
+    if (variant) {
+        output.Validate(*variant);
+    } else {  // the sub-range is checked against the device's variant at Connect
+        OutputMode m = output;
+        if (m.HasSubRange()) {
+            m.first_beam = m.last_beam = 1;
+        }
+        m.Validate(Variant{});
+    }
+    CheckConfigBlock(config_changes.ApplyTo(ConfigBlock::Default()),
+                     "LMS 200 driver configuration changes");
 }
 
-Lms200Driver::Lms200Driver(DriverConfig config) : config_(std::move(config)) {
+ConfigBlock ConfigChanges::ApplyTo(ConfigBlock config) const {
+    if (measuring_mode) {
+        config.set_measuring_mode(*measuring_mode);
+    }
+    if (units) {
+        config.set_units(*units);
+    }
+    if (availability) {
+        config.set_availability(*availability);
+    }
+    if (sensitivity) {
+        config.set_sensitivity(*sensitivity);
+    }
+    return config;
+}
+
+Lms200Driver::Lms200Driver(DriverConfig config)
+    : config_(std::move(config)), parser_(Sender::kScanner, 0, config_.strict_checks) {
     config_.Validate();
     buffer_.resize(4096);
 }
@@ -107,8 +144,11 @@ bool Lms200Driver::FindScanner() {
     return false;
 }
 
-Telegram Lms200Driver::Require(const Telegram& request, double timeout_s, const char* what) {
-    std::optional<Telegram> reply = Transact(request, timeout_s, config_.tries);
+Telegram Lms200Driver::Require(const Telegram& request,
+                               double timeout_s,
+                               const char* what,
+                               std::uint8_t reply_cmd) {
+    std::optional<Telegram> reply = Transact(request, timeout_s, config_.tries, reply_cmd);
     if (!reply) {
         throw SerialError(config_.device + ": no reply to " + what);
     }
@@ -120,12 +160,14 @@ Telegram Lms200Driver::Require(const Telegram& request, double timeout_s, const 
 
 void Lms200Driver::Initialise() {
     parser_.Reset();
+    has_pending_arrival_ = false;
     streaming_ = false;
     ready_.clear();
     if (!FindScanner()) {
         throw SerialError(config_.device +
                           ": no LMS 200 answers at 9600, 19200, 38400 or 500000 baud");
     }
+    info_.baud = port_->baud();
     if (ParseModeReply(Require(MakeModeRequest(mode::kRequest), config_.mode_timeout_s,
                                "request mode 0x20 0x25")) != 0) {
         throw SerialError(config_.device + ": scanner refused request mode 0x25");
@@ -137,16 +179,14 @@ void Lms200Driver::Initialise() {
         Require(MakeReadConfigRequest(), config_.reply_timeout_s, "configuration 0x74"));
     info_.format = FormatOf(info_.config);
     info_.variant = info_.status.variant;
-    if (config_.variant && *config_.variant != info_.variant) {
-        const VariantReply r = ParseVariantReply(
-            Require(MakeVariantRequest(*config_.variant), config_.reply_timeout_s, "variant 0x3B"));
-        if (!r.accepted) {
-            throw MakeInputError(config_.device, "variant",
-                                 std::to_string(config_.variant->angle_deg) + "," +
-                                     std::to_string(config_.variant->resolution_cdeg),
-                                 "refused by the scanner");
+    if (!config_.config_changes.Empty()) {
+        const ConfigBlock wanted = config_.config_changes.ApplyTo(info_.config);
+        if (wanted != info_.config) {
+            WriteConfig(wanted);
         }
-        info_.variant = r.variant;
+    }
+    if (config_.variant && *config_.variant != info_.variant) {
+        SetVariant(*config_.variant);
     }
     if (!info_.variant.IsValid()) {
         throw MakeInputError(config_.device, "status variant",
@@ -154,33 +194,90 @@ void Lms200Driver::Initialise() {
                                  std::to_string(info_.variant.resolution_cdeg),
                              "not an LMS 200 variant");
     }
-    if (ParseModeReply(Require(MakeModeRequest(mode::kStreamAll), config_.mode_timeout_s,
-                               "continuous output 0x20 0x24")) != 0) {
-        throw SerialError(config_.device + ": scanner refused continuous output 0x24");
+    config_.output.Validate(info_.variant);
+    info_.output = config_.output;
+    StartOutput();
+}
+
+void Lms200Driver::StartOutput() {
+    early_.clear();
+    starting_output_ = true;
+    std::uint8_t result = 0;
+    try {
+        result = ParseModeReply(Require(MakeOutputModeRequest(info_.output), config_.mode_timeout_s,
+                                        "output mode 0x20"));
+    } catch (...) {
+        starting_output_ = false;
+        throw;
     }
-    info_.baud = port_->baud();
-    // The scan clock restarts with every connection (the mirror may have restarted). It needs
-    // a line that carries every sweep: when a telegram takes longer than a scan period, the
-    // scanner sends the newest sweep whenever the line frees, at a phase unrelated to the
-    // sweep grid, and the arrival times hold no information about it.
-    const double period_s = ScanPeriodS(info_.variant);
+    starting_output_ = false;
+    if (result != 0) {
+        throw MakeInputError(config_.device, "output mode", info_.output.ToString(),
+                             "refused by the scanner (A0 result " + std::to_string(result) + ")");
+    }
+    RestartClock();
+    streaming_ = true;
+    last_scan_ = Clock::now();
+    for (const auto& [t, arrival_s] : early_) {
+        OnTelegram(t, arrival_s);
+    }
+    early_.clear();
+}
+
+bool Lms200Driver::StopOutput() {
+    const bool was = streaming_;
+    if (streaming_) {
+        streaming_ = false;
+        if (ParseModeReply(Require(MakeModeRequest(mode::kRequest), config_.mode_timeout_s,
+                                   "request mode 0x20 0x25")) != 0) {
+            throw SerialError(config_.device + ": scanner refused request mode 0x25");
+        }
+    }
+    ready_.clear();
+    return was;
+}
+
+void Lms200Driver::RestartClock() {
+    // The scan clock restarts with every connection and mode change (the mirror may have
+    // restarted). Without real-time indices it needs a line that carries every telegram: when
+    // one takes longer than the telegram period, the scanner sends the newest data whenever
+    // the line frees, at a phase unrelated to the sweep grid, and the arrival times alone
+    // cannot tell which sweep a telegram carries. With the indices they can.
+    const bool indexed = info_.config.realtime_indices();
+    const double period_s = TelegramPeriodS(info_.output, info_.variant);
     const std::size_t frame_bytes =
-        kFrameOverhead + 4 + 2 * static_cast<std::size_t>(info_.variant.BeamCount());
+        kFrameOverhead + 10 + 2 * static_cast<std::size_t>(ValueCount(info_.output, info_.variant));
     sync_ = config_.stamps == StampMode::kScanClock &&
-            TransmissionTimeS(frame_bytes, info_.baud) < period_s;
+            (indexed || TransmissionTimeS(frame_bytes, info_.baud) < period_s);
     sync_outliers_ += clock_.outliers();
     ScanClockConfig cc;
-    cc.period_s = period_s;
+    cc.period_s = indexed ? core::Lms200Timing::kTurnPeriodS : period_s;
     cc.window_s = config_.sync_window_s;
     clock_ = ScanClock(cc);
     held_.clear();
-    streaming_ = true;
-    last_scan_ = Clock::now();
+    have_turn_ = false;
+}
+
+FrameExpectation Lms200Driver::Expectation() const {
+    FrameExpectation e;
+    e.variant = info_.variant;
+    e.mode = info_.output;
+    e.format = info_.format;
+    e.realtime_indices = info_.config.realtime_indices();
+    e.value_flags = config_.value_flags;
+    return e;
+}
+
+void Lms200Driver::RequireConnected(const char* what) const {
+    if (!port_) {
+        throw SerialError(config_.device + ": " + what + " needs a connected scanner");
+    }
 }
 
 std::optional<Telegram> Lms200Driver::Transact(const Telegram& request,
                                                double timeout_s,
-                                               int tries) {
+                                               int tries,
+                                               std::uint8_t reply_cmd) {
     const std::vector<std::uint8_t> frame = EncodeTelegram(request);
     // The ACK comes within 60 ms, but only after a telegram already on the line.
     const double ack_window_s = 0.1 + TransmissionTimeS(kMaxFrameBytes, port_->baud());
@@ -190,9 +287,11 @@ std::optional<Telegram> Lms200Driver::Transact(const Telegram& request,
         }
         port_->Flush();
         parser_.Reset();
+        has_pending_arrival_ = false;
         ready_.clear();
         awaited_.reset();
-        awaited_cmd_ = static_cast<std::uint8_t>(request.command | cmd::kReplyBit);
+        awaited_cmd_ = reply_cmd != 0 ? reply_cmd
+                                      : static_cast<std::uint8_t>(request.command | cmd::kReplyBit);
         saw_ack_ = saw_nak_ = saw_bad_crc_ = false;
         if (config_.request_byte_gap_s > 0.0) {
             port_->WriteSlowly(frame, config_.request_byte_gap_s);
@@ -200,16 +299,14 @@ std::optional<Telegram> Lms200Driver::Transact(const Telegram& request,
             port_->Write(frame, 1.0);
         }
         Clock::time_point deadline = Clock::now() + Duration(ack_window_s);
-        Clock::time_point last_byte = Clock::now();
+        last_byte_ = Clock::now();
         bool acked = false;
         while (Clock::now() < deadline) {
-            if (ReadSome(std::min(config_.inter_byte_timeout_s,
-                                  std::max(0.0, Seconds(deadline - Clock::now())))) > 0) {
-                last_byte = Clock::now();
-            }
+            (void)ReadSome(std::min(config_.inter_byte_timeout_s,
+                                    std::max(0.0, Seconds(deadline - Clock::now()))));
             // Before the ACK, silence means no telegram is in flight either (the LMS leaves
             // at most 14 ms between bytes) and the ACK (due within 60 ms) is not coming.
-            if (!acked && !saw_ack_ && Seconds(Clock::now() - last_byte) > kSilentLineS) {
+            if (!acked && !saw_ack_ && Seconds(Clock::now() - last_byte_) > kSilentLineS) {
                 break;
             }
             if (awaited_) {
@@ -234,12 +331,24 @@ std::optional<Telegram> Lms200Driver::Transact(const Telegram& request,
 }
 
 std::size_t Lms200Driver::ReadSome(double timeout_s) {
-    const std::size_t n = port_->Read(buffer_, timeout_s);
+    double wait_s = timeout_s;
+    if (parser_.Pending()) {  // a complete telegram waits for the next byte or for idle
+        wait_s = std::min(
+            wait_s, std::max(0.0, config_.idle_confirm_s - Seconds(Clock::now() - last_byte_)));
+    }
+    std::size_t n = 0;
+    bool hung_up = false;
+    try {
+        n = port_->Read(buffer_, wait_s);
+    } catch (const SerialError&) {
+        hung_up = true;  // the line went dead: a telegram completed before stands
+    }
     const double arrival_s = WallNowS();
     const TelegramParser::Callback cb = [this, arrival_s](ParserEvent e, const Telegram& t) {
         switch (e) {
             case ParserEvent::kTelegram:
-                OnTelegram(t, arrival_s);
+                OnTelegram(t, has_pending_arrival_ ? pending_arrival_s_ : arrival_s);
+                has_pending_arrival_ = false;
                 break;
             case ParserEvent::kAckByte:
                 saw_ack_ = saw_ack_ || parser_.InSync();  // an ACK inside noise means nothing
@@ -250,16 +359,33 @@ std::size_t Lms200Driver::ReadSome(double timeout_s) {
             case ParserEvent::kBadCrc:
                 saw_bad_crc_ = true;
                 break;
+            case ParserEvent::kBadFollower:
+                has_pending_arrival_ = false;
+                saw_bad_crc_ = true;
+                break;
         }
     };
+    if (hung_up) {
+        parser_.Idle(cb);
+        throw SerialError(config_.device + ": the device hung up");
+    }
     if (n == 0) {
-        if (parser_.InFrame()) {
+        const double quiet_s = Seconds(Clock::now() - last_byte_);
+        if (parser_.Pending() && quiet_s >= config_.idle_confirm_s) {
+            parser_.Idle(cb);  // the line went idle after the telegram: it stands
+        }
+        if (parser_.InFrame() && quiet_s >= config_.inter_byte_timeout_s) {
             saw_bad_crc_ = true;  // a telegram stopped short: damaged
             parser_.Timeout(cb);
         }
         return 0;
     }
+    last_byte_ = Clock::now();
     parser_.Feed(std::span(buffer_.data(), n), cb);
+    if (parser_.Pending() && !has_pending_arrival_) {
+        pending_arrival_s_ = arrival_s;
+        has_pending_arrival_ = true;
+    }
     return n;
 }
 
@@ -268,41 +394,79 @@ void Lms200Driver::OnTelegram(const Telegram& t, double arrival_s) {
         awaited_ = t;
         return;
     }
-    if (t.command != (cmd::kScan | cmd::kReplyBit) || !streaming_) {
+    if (IsMeasuredValues(t.command) && starting_output_ && awaited_) {
+        early_.emplace_back(t, arrival_s);  // the stream began right after the A0 reply
+        return;
+    }
+    if (!IsMeasuredValues(t.command) || !streaming_) {
         return;  // e.g. a late reply or the 0x90 power-on telegram
     }
     try {
-        const MeasuredValues v = ParseMeasuredValues(t);
-        if (v.partial) {
-            throw MakeInputError("LMS 200 telegram 0xB0", "partial flag", "1", "0 in mode 0x24");
-        }
-        const double latest_s = arrival_s -
-                                TransmissionTimeS(t.Len() + kFrameOverhead, port_->baud()) -
-                                SweepDurationS(info_.variant);
-        if (!sync_) {
-            ready_.push_back(ScanFromValues(v, info_.format, info_.variant, latest_s));
-        } else {
-            const double stamp_s = clock_.Stamp(latest_s);
-            core::Scan scan = ScanFromValues(v, info_.format, info_.variant, stamp_s);
-            const auto hold = static_cast<std::uint64_t>(ScanClockConfig{}.warmup_scans);
-            if (clock_.scans() > hold) {
-                ready_.push_back(std::move(scan));
-            } else {
-                held_.emplace_back(std::move(scan), clock_.last_index());
-                if (clock_.scans() == hold) {  // re-stamp the first scans with the better phase
-                    const double period_s = ScanPeriodS(info_.variant);
-                    for (auto& [held, k] : held_) {
-                        held.stamp_s = clock_.phase_s() + static_cast<double>(k) * period_s;
-                        ready_.push_back(std::move(held));
-                    }
-                    held_.clear();
-                }
-            }
-        }
-        ++own_.scans;
-        last_scan_ = Clock::now();
+        OnValues(ParseMeasuredValues(t), arrival_s, t.Len() + kFrameOverhead);
     } catch (const InputError&) {
         ++own_.malformed;
+    }
+}
+
+std::int64_t Lms200Driver::UnwrapIndex(std::uint8_t index, double latest_s) const {
+    if (!have_turn_) {
+        return index;
+    }
+    const double period_s = clock_.period_s();
+    const auto estimate =
+        static_cast<std::int64_t>(std::llround((latest_s - clock_.phase_s()) / period_s));
+    std::int64_t d = (static_cast<std::int64_t>(index) - estimate) % 256;
+    if (d < -128) {
+        d += 256;
+    } else if (d >= 128) {
+        d -= 256;
+    }
+    return std::max(estimate + d, last_turn_ + 1);
+}
+
+void Lms200Driver::OnValues(const MeasuredValues& v, double arrival_s, std::size_t frame_bytes) {
+    const FrameExpectation e = Expectation();
+    if (config_.strict_checks) {
+        CheckMeasuredValues(v, e);
+    } else if (v.command != info_.output.ReplyCommand()) {
+        throw MakeInputError("LMS 200 telegram " + CommandName(v.command), "command",
+                             CommandName(v.command), "not the output mode's");
+    }
+    const double latest_s = arrival_s - TransmissionTimeS(frame_bytes, port_->baud()) -
+                            TelegramSweepS(info_.output, info_.variant);
+    const bool indexed = e.realtime_indices && v.realtime_index.size() == 1;
+    core::Scan scan = ScanFromFrame(v, e, latest_s);
+    const double shift_s = scan.stamp_s - latest_s;
+    ++own_.scans;
+    last_scan_ = Clock::now();
+    if (!sync_) {
+        ready_.push_back(std::move(scan));
+        return;
+    }
+    double grid_s = 0.0;
+    if (indexed) {
+        const std::int64_t k = UnwrapIndex(v.realtime_index[0], latest_s);
+        grid_s = clock_.StampIndexed(latest_s, k);
+        last_turn_ = k;
+        have_turn_ = true;
+        ++own_.realtime_scans;
+    } else {
+        grid_s = clock_.Stamp(latest_s);
+    }
+    scan.stamp_s = grid_s + shift_s;
+    const auto hold = static_cast<std::uint64_t>(ScanClockConfig{}.warmup_scans);
+    if (clock_.scans() > hold) {
+        ready_.push_back(std::move(scan));
+        return;
+    }
+    held_.push_back({std::move(scan), clock_.last_index(), shift_s});
+    if (clock_.scans() == hold) {  // re-stamp the first scans with the better phase
+        for (HeldScan& h : held_) {
+            h.scan.stamp_s =
+                clock_.phase_s() + static_cast<double>(h.k) * clock_.period_s() + h.shift_s;
+            ready_.push_back(std::move(h.scan));
+        }
+        held_.clear();
     }
 }
 
@@ -345,9 +509,11 @@ std::optional<core::Scan> Lms200Driver::NextScan(double timeout_s) {
             ++own_.reconnects;
             continue;
         }
-        // Quiet line: at least twice the longest frame's transmission time.
-        const double quiet_s = std::max(config_.quiet_timeout_s,
-                                        2.0 * TransmissionTimeS(kMaxFrameBytes, port_->baud()));
+        // Quiet line: at least twice the longest frame's transmission time, and twice the
+        // telegram period (mean values of 250 scans come every 6.7 s at 0.5 deg).
+        const double quiet_s = std::max({config_.quiet_timeout_s,
+                                         2.0 * TransmissionTimeS(kMaxFrameBytes, port_->baud()),
+                                         2.0 * TelegramPeriodS(info_.output, info_.variant)});
         if (ready_.empty() && Seconds(Clock::now() - last_scan_) > quiet_s) {
             port_.reset();
             ++own_.reconnects;
@@ -382,6 +548,7 @@ DriverCounters Lms200Driver::counters() const {
     c.dropped_bytes = p.dropped_bytes;
     c.resyncs = p.resyncs;
     c.naks = p.naks;
+    c.bad_followers = p.bad_followers;
     c.sync_outliers = sync_outliers_ + clock_.outliers();
     return c;
 }

@@ -87,4 +87,27 @@ double ScanClock::Stamp(double latest_s) {
     return anchor_s_ + phase_rel_s_ + static_cast<double>(k) * period;
 }
 
+double ScanClock::StampIndexed(double latest_s, std::int64_t k) {
+    const double period = config_.period_s;
+    if (count_ == 0) {
+        anchor_s_ = latest_s - static_cast<double>(k) * period;
+        phase_rel_s_ = 0.0;
+        window_.clear();
+    }
+    const double x = latest_s - anchor_s_;
+    const double residual = x - static_cast<double>(k) * period;
+    last_k_ = k;
+    ++count_;
+    window_.push_back({x, residual});
+    while (window_.size() > 1 && window_.front().latest_rel_s < x - config_.window_s) {
+        window_.pop_front();
+    }
+    double phase = residual;
+    for (const Sample& s : window_) {
+        phase = std::min(phase, s.residual_s);
+    }
+    phase_rel_s_ = phase;
+    return anchor_s_ + phase_rel_s_ + static_cast<double>(k) * period;
+}
+
 }  // namespace casmap::drivers

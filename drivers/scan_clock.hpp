@@ -37,10 +37,16 @@ public:
     /// `latest_s` = the latest plausible stamp of a scan (arrival - transmission - sweep), in
     /// arrival order. Returns the synchronised stamp t0 + k * T with t0 the current estimate.
     [[nodiscard]] double Stamp(double latest_s);
+    /// Same, for a scan whose grid index the scanner told (the real-time scan index, unwrapped
+    /// by the caller): only the phase is estimated, the lower envelope of latest_s - k T over
+    /// the window. Works however many sweeps the line skips (e.g. 38400 baud).
+    [[nodiscard]] double StampIndexed(double latest_s, std::int64_t k);
 
     /// Grid index of the last stamped scan, counted from the first scan since Reset (skipped
     /// sweeps skip indices).
     [[nodiscard]] std::int64_t last_index() const { return last_k_; }
+    /// Grid period T (s).
+    [[nodiscard]] double period_s() const { return config_.period_s; }
     /// Current phase estimate t0 (the stamp of index 0).
     [[nodiscard]] double phase_s() const { return anchor_s_ + phase_rel_s_; }
     /// Scans stamped since Reset.

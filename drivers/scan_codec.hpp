@@ -8,6 +8,7 @@
 
 #include "casmap/core/lms200.hpp"
 #include "casmap/core/scan.hpp"
+#include "casmap/drivers/output_mode.hpp"
 #include "casmap/drivers/telegram.hpp"
 
 namespace casmap::drivers {
@@ -31,6 +32,24 @@ namespace casmap::drivers {
                                         const core::Lms200Format& format,
                                         const Variant& variant,
                                         double stamp_s);
+
+/// Seconds between telegrams of `mode` on the sweep grid: the scan period (continuous,
+/// sub-range), n scan periods (mean values), one mirror turn (partial scans).
+[[nodiscard]] double TelegramPeriodS(const OutputMode& mode, const Variant& variant);
+/// Seconds from beam 0 of the last sweep a telegram carries to the end of that sweep:
+/// SweepDurationS(variant), or one turn's angular sweep for a partial scan.
+[[nodiscard]] double TelegramSweepS(const OutputMode& mode, const Variant& variant);
+
+/// Any measured-value telegram -> Scan over the beams it carries. `sweep_stamp_s` is the time
+/// of beam 0 of the (last) complete sweep, or of the turn for a partial scan. Sub-ranges start
+/// at beam first - 1 (start_angle_rad and stamp_s moved accordingly; in interleaved variants
+/// beam_time_offset_s may be negative for beams measured in an earlier turn than the first);
+/// a partial scan p carries beams p, p + turns, ... of one turn (angle step = turns x
+/// resolution). Mean values are stamped like their last scan. Throws InputError if the value
+/// count does not match `mode` and `variant`.
+[[nodiscard]] core::Scan ScanFromFrame(const MeasuredValues& values,
+                                       const FrameExpectation& expect,
+                                       double sweep_stamp_s);
 
 /// One beam as a raw word: its `raw` field when that decodes back to the same status and range
 /// under `format`, otherwise the range (or the status's special code) encoded in `format`.

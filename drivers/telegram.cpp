@@ -51,6 +51,10 @@ std::uint16_t MeasuredHeader(const MeasuredValues& v) {
         throw MakeInputError("LMS 200 telegram 0xB0", "realtime_index bytes",
                              std::to_string(v.realtime_index.size()), "0..2");
     }
+    if (!IsMeasuredValues(v.command)) {
+        throw MakeInputError("LMS 200 measured values", "command", Hex(v.command),
+                             "0xB0, 0xB6, 0xB7 or 0xBF");
+    }
     unsigned header = static_cast<unsigned>(v.values.size());
     header |= static_cast<unsigned>(v.partial_index) << 11U;
     header |= (v.partial ? 1U : 0U) << 13U;
@@ -58,7 +62,36 @@ std::uint16_t MeasuredHeader(const MeasuredValues& v) {
     return static_cast<std::uint16_t>(header);
 }
 
+/// Blocks before the header word: sample size (B6, BF), first and last beam (B7, BF).
+void PutLeadingBlocks(const MeasuredValues& v, std::vector<std::uint8_t>& out) {
+    if (v.command == cmd::kMeanValues || v.command == cmd::kMeanSubRange) {
+        out.push_back(v.sample_size);
+    }
+    if (v.command == cmd::kSubRange || v.command == cmd::kMeanSubRange) {
+        PutU16(out, v.first_beam);
+        PutU16(out, v.last_beam);
+    }
+}
+
+std::size_t LeadingBlockSize(std::uint8_t command) {
+    switch (command) {
+        case cmd::kMeanValues:
+            return 1;
+        case cmd::kSubRange:
+            return 4;
+        case cmd::kMeanSubRange:
+            return 5;
+        default:
+            return 0;
+    }
+}
+
 }  // namespace
+
+bool IsMeasuredValues(std::uint8_t command) {
+    return command == cmd::kValues || command == cmd::kMeanValues || command == cmd::kSubRange ||
+           command == cmd::kMeanSubRange;
+}
 
 std::uint16_t Crc16(std::span<const std::uint8_t> bytes) {
     std::uint16_t crc = 0;
@@ -223,6 +256,24 @@ core::Lms200Format FormatOf(const ConfigBlock& config) {
     return f;
 }
 
+void CheckConfigBlock(const ConfigBlock& config, const std::string& what) {
+    if (config.bytes.size() != ConfigBlock::kLongSize &&
+        config.bytes.size() != ConfigBlock::kShortSize) {
+        throw MakeInputError(what, "configuration size", std::to_string(config.bytes.size()),
+                             "34 or 32 bytes");
+    }
+    (void)FormatOf(config);
+    if (config.availability() > 7) {
+        throw MakeInputError(what, "availability (byte C)", Hex(config.availability()),
+                             "bits 0-2 only (0x00-0x07)");
+    }
+    if (config.sensitivity() > 3) {
+        throw MakeInputError(what, "sensitivity (byte B, peak threshold)",
+                             std::to_string(config.sensitivity()),
+                             "0 standard, 1 medium, 2 low, 3 high");
+    }
+}
+
 std::uint8_t ModeByteOf(const core::Lms200Format& format) {
     switch (format.mode) {
         case core::RangeMode::k8m:
@@ -345,20 +396,33 @@ Telegram MakeResetReply(std::uint8_t status) {
     return t;
 }
 
+Telegram MakePowerOnTelegram(std::string_view type, std::uint8_t status) {
+    std::vector<std::uint8_t> data(21, ' ');
+    PutAscii(data, 0, type, 21);
+    Telegram t = Reply(cmd::kPowerOn, std::move(data), status);
+    t.command = cmd::kPowerOn;  // unsolicited: not a reply code (0x10 | 0x80 is 0x90 anyway)
+    return t;
+}
+
 Telegram MakeMeasuredValues(const MeasuredValues& v) {
     std::vector<std::uint8_t> data;
-    data.reserve(2 + 2 * v.values.size() + v.realtime_index.size());
-    PutU16(data, MeasuredHeader(v));
+    const std::uint16_t header = MeasuredHeader(v);
+    data.reserve(7 + 2 * v.values.size() + v.realtime_index.size());
+    PutLeadingBlocks(v, data);
+    PutU16(data, header);
     for (const std::uint16_t value : v.values) {
         PutU16(data, value);
     }
     data.insert(data.end(), v.realtime_index.begin(), v.realtime_index.end());
-    return Reply(cmd::kScan, std::move(data), v.status);
+    Telegram t = Reply(cmd::kScan, std::move(data), v.status);
+    t.command = v.command;
+    return t;
 }
 
 void AppendMeasuredValues(const MeasuredValues& v, std::vector<std::uint8_t>& out) {
     const std::uint16_t header = MeasuredHeader(v);
-    const std::size_t len = 1 + 2 + 2 * v.values.size() + v.realtime_index.size() + 1;
+    const std::size_t len =
+        1 + LeadingBlockSize(v.command) + 2 + 2 * v.values.size() + v.realtime_index.size() + 1;
     if (len > kMaxLen) {
         throw MakeInputError("LMS 200 telegram 0xB0", "LEN", std::to_string(len),
                              "at most " + std::to_string(kMaxLen));
@@ -367,7 +431,8 @@ void AppendMeasuredValues(const MeasuredValues& v, std::vector<std::uint8_t>& ou
     out.push_back(kStx);
     out.push_back(kReplyAddressBit);
     PutU16(out, static_cast<std::uint16_t>(len));
-    out.push_back(cmd::kScan | cmd::kReplyBit);
+    out.push_back(v.command);
+    PutLeadingBlocks(v, out);
     PutU16(out, header);
     for (const std::uint16_t value : v.values) {
         PutU16(out, value);

@@ -40,18 +40,26 @@ inline constexpr std::uint8_t kType = 0x3A;
 inline constexpr std::uint8_t kVariant = 0x3B;
 inline constexpr std::uint8_t kReadConfig = 0x74;
 inline constexpr std::uint8_t kWriteConfig = 0x77;
+inline constexpr std::uint8_t kPowerOn = 0x90;  // unsolicited, after power-on or reset
 inline constexpr std::uint8_t kResetReply = 0x91;
 inline constexpr std::uint8_t kNotAcknowledged = 0x92;  // logically invalid request
 inline constexpr std::uint8_t kReplyBit = 0x80;
+inline constexpr std::uint8_t kValues = 0xB0;        // complete or partial scan
+inline constexpr std::uint8_t kMeanValues = 0xB6;    // mean over n scans
+inline constexpr std::uint8_t kSubRange = 0xB7;      // beams first..last
+inline constexpr std::uint8_t kMeanSubRange = 0xBF;  // mean over n scans of first..last
 }  // namespace cmd
 
 /// Operating-mode bytes of request 0x20 (names as in sicktoolbox).
 namespace mode {
 inline constexpr std::uint8_t kInstallation = 0x00;
 inline constexpr std::uint8_t kDiagnostic = 0x10;
-inline constexpr std::uint8_t kStreamAll = 0x24;      // continuous B0 stream
-inline constexpr std::uint8_t kRequest = 0x25;        // values on request (idle)
-inline constexpr std::uint8_t kStreamPartial = 0x2A;  // B0 per mirror turn, partial index
+inline constexpr std::uint8_t kStreamAll = 0x24;           // continuous B0 stream
+inline constexpr std::uint8_t kRequest = 0x25;             // values on request (idle)
+inline constexpr std::uint8_t kStreamMean = 0x26;          // B6: mean of n scans (+ n)
+inline constexpr std::uint8_t kStreamSubRange = 0x27;      // B7: beams first..last (+ 2 x u16)
+inline constexpr std::uint8_t kStreamMeanSubRange = 0x28;  // BF (+ n, 2 x u16)
+inline constexpr std::uint8_t kStreamPartial = 0x2A;       // B0 per mirror turn, partial index
 inline constexpr std::uint8_t kBaud38400 = 0x40;
 inline constexpr std::uint8_t kBaud19200 = 0x41;
 inline constexpr std::uint8_t kBaud9600 = 0x42;
@@ -118,9 +126,21 @@ struct ConfigBlock {
     static constexpr std::size_t kShortSize = 32;  // older firmware / RL's profile
     std::vector<std::uint8_t> bytes = std::vector<std::uint8_t>(kLongSize, 0);
 
+    /// Availability bits (byte C): high availability, real-time indices, dazzle ignored.
+    static constexpr std::uint8_t kHighAvailability = 0x01;
+    static constexpr std::uint8_t kRealTimeIndices = 0x02;
+    static constexpr std::uint8_t kDazzleIgnored = 0x04;
+
+    [[nodiscard]] std::uint8_t stop_threshold() const { return bytes.at(2); }
+    /// Peak threshold / sensitivity (byte B, second): 0 standard, 1 medium, 2 low, 3 high.
+    [[nodiscard]] std::uint8_t sensitivity() const { return bytes.at(3); }
     [[nodiscard]] std::uint8_t availability() const { return bytes.at(4); }
     [[nodiscard]] std::uint8_t measuring_mode() const { return bytes.at(5); }
     [[nodiscard]] std::uint8_t units() const { return bytes.at(6); }  // 0 cm, 1 mm
+    /// True when availability bit 1 asks for a real-time scan index after the values.
+    [[nodiscard]] bool realtime_indices() const { return (availability() & kRealTimeIndices) != 0; }
+    void set_sensitivity(std::uint8_t v) { bytes.at(3) = v; }
+    void set_availability(std::uint8_t a) { bytes.at(4) = a; }
     void set_measuring_mode(std::uint8_t m) { bytes.at(5) = m; }
     void set_units(std::uint8_t u) { bytes.at(6) = u; }
     /// Default block: blanking 0, mode 0x00 (8 m / 80 m, fields A, B, dazzle), units mm.
@@ -134,6 +154,10 @@ struct ConfigBlock {
 /// Measuring-mode byte for a core format (0x00, 0x04, 0x06) and units byte (0 cm, 1 mm).
 [[nodiscard]] std::uint8_t ModeByteOf(const core::Lms200Format& format);
 [[nodiscard]] std::uint8_t UnitsByteOf(const core::Lms200Format& format);
+/// Throws InputError naming the byte when a block is not one the virtual scanner and the
+/// driver support: size 34 or 32, measuring mode 0x00-0x06, units 0/1, availability 0-7,
+/// sensitivity 0-3.
+void CheckConfigBlock(const ConfigBlock& config, const std::string& what);
 
 // ---------------------------------------------------------------------------------------------
 // Status block (0xB1, 152 data bytes). Indices are payload indices with CMD at 0 (STB's).
@@ -156,11 +180,15 @@ inline constexpr std::size_t kStatusDataSize = 152;
 // Measured values (0xB0), reference section 3.
 
 struct MeasuredValues {
-    std::vector<std::uint16_t> values;  // N raw words, angular order right -> left
+    std::uint8_t command = cmd::kValues;  // 0xB0, 0xB6 (mean), 0xB7 (sub-range), 0xBF (both)
+    std::uint8_t sample_size = 0;         // 0xB6, 0xBF: scans averaged (2..250)
+    std::uint16_t first_beam = 0;         // 0xB7, 0xBF: 1-based index of the first value
+    std::uint16_t last_beam = 0;          // 0xB7, 0xBF: 1-based index of the last value
+    std::vector<std::uint16_t> values;    // N raw words, angular order right -> left
     core::RangeUnits units = core::RangeUnits::kMillimetre;  // header bits 14-15
     std::uint8_t partial_index = 0;            // header bits 11-12: offset index * 0.25 deg
     bool partial = false;                      // header bit 13
-    std::vector<std::uint8_t> realtime_index;  // 0-2 bytes after the values
+    std::vector<std::uint8_t> realtime_index;  // 0-2 bytes after the values (1 when on)
     std::uint8_t status = kStatusOk;
     bool operator==(const MeasuredValues&) const = default;
 };
@@ -199,8 +227,12 @@ struct MeasuredValues {
                                             std::uint8_t status = kStatusOk);
 [[nodiscard]] Telegram MakeNotAcknowledged(std::uint8_t status = kStatusOk);
 [[nodiscard]] Telegram MakeResetReply(std::uint8_t status = kStatusOk);
-/// 0xB0 with header (count, partial offset, partial flag, units). Throws InputError for more
-/// than 1023 values, a partial index > 3 or more than 2 real-time index bytes.
+/// Unsolicited 0x90 after power-on or reset: 21 ASCII bytes (the type string) + status.
+[[nodiscard]] Telegram MakePowerOnTelegram(std::string_view type, std::uint8_t status = kStatusOk);
+/// 0xB0/0xB6/0xB7/0xBF (`values.command`) with the blocks before the header (sample size,
+/// first/last beam) and the header (count, partial offset, partial flag, units). Throws
+/// InputError for more than 1023 values, a partial index > 3, more than 2 real-time index
+/// bytes or another command.
 [[nodiscard]] Telegram MakeMeasuredValues(const MeasuredValues& values);
 /// Same as MakeMeasuredValues, framed straight into `out` (the streaming hot path).
 void AppendMeasuredValues(const MeasuredValues& values, std::vector<std::uint8_t>& out);
@@ -223,7 +255,9 @@ struct WriteConfigReply {
     ConfigBlock config;
 };
 [[nodiscard]] WriteConfigReply ParseWriteConfigReply(const Telegram& t);
+/// 0xB0, 0xB6, 0xB7 or 0xBF. Bytes after the values (0-2) go to realtime_index.
 [[nodiscard]] MeasuredValues ParseMeasuredValues(const Telegram& t);
+[[nodiscard]] bool IsMeasuredValues(std::uint8_t command);
 
 // Request parsers (the virtual scanner's side).
 [[nodiscard]] Variant ParseVariantRequest(const Telegram& t);

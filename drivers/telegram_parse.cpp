@@ -125,25 +125,45 @@ WriteConfigReply ParseWriteConfigReply(const Telegram& t) {
 }
 
 MeasuredValues ParseMeasuredValues(const Telegram& t) {
-    ExpectCommand(t, cmd::kScan | cmd::kReplyBit);
-    if (t.data.size() < 2) {
-        throw TelegramError(t, "LEN", std::to_string(t.Len()), "at least 4");
+    if (!IsMeasuredValues(t.command)) {
+        throw TelegramError(t, "command", CommandName(t.command), "0xB0, 0xB6, 0xB7 or 0xBF");
     }
-    const std::uint16_t header = GetU16(t.data, 0);
+    MeasuredValues v;
+    v.command = t.command;
+    std::size_t at = 0;  // data index of the next block
+    const bool mean = t.command == cmd::kMeanValues || t.command == cmd::kMeanSubRange;
+    const bool sub = t.command == cmd::kSubRange || t.command == cmd::kMeanSubRange;
+    const std::size_t lead = (mean ? 1U : 0U) + (sub ? 4U : 0U);
+    if (t.data.size() < lead + 2) {
+        throw TelegramError(t, "LEN", std::to_string(t.Len()),
+                            "at least " + std::to_string(lead + 4));
+    }
+    if (mean) {
+        v.sample_size = t.data[at++];
+    }
+    if (sub) {
+        v.first_beam = GetU16(t.data, at);
+        v.last_beam = GetU16(t.data, at + 2);
+        at += 4;
+    }
+    const std::uint16_t header = GetU16(t.data, at);
+    at += 2;
     const std::size_t count = header & 0x3FFU;
-    const std::size_t values_end = 2 + 2 * count;
+    const std::size_t values_end = at + 2 * count;
     if (t.data.size() < values_end || t.data.size() > values_end + 2) {
         throw TelegramError(t, "LEN", std::to_string(t.Len()),
-                            "4 + 2 * " + std::to_string(count) +
+                            std::to_string(lead + 4) + " + 2 * " + std::to_string(count) +
                                 " values (header count) + 0..2 real-time index bytes");
     }
     if ((header & 0x8000U) != 0) {
         throw TelegramError(t, "header units bits", Hex(header, 4), "00 = cm, 01 = mm");
     }
-    MeasuredValues v;
+    if ((header & 0x0400U) != 0) {
+        throw TelegramError(t, "header bit 10", Hex(header, 4), "reserved, must be 0");
+    }
     v.values.resize(count);
     for (std::size_t i = 0; i < count; ++i) {
-        v.values[i] = GetU16(t.data, 2 + 2 * i);
+        v.values[i] = GetU16(t.data, at + 2 * i);
     }
     v.units =
         (header & 0x4000U) != 0 ? core::RangeUnits::kMillimetre : core::RangeUnits::kCentimetre;

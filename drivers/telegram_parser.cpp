@@ -2,8 +2,10 @@
 
 namespace casmap::drivers {
 
-TelegramParser::TelegramParser(Sender sender, std::uint8_t address)
-    : sender_(sender), address_(address) {
+TelegramParser::TelegramParser(Sender sender, std::uint8_t address, bool check_follower)
+    : sender_(sender),
+      address_(address),
+      check_follower_(check_follower && sender == Sender::kScanner) {
     frame_.reserve(kMaxFrameBytes);
     replay_.reserve(2 * kMaxFrameBytes);
     telegram_.data.reserve(kMaxLen);
@@ -17,7 +19,14 @@ void TelegramParser::Feed(std::span<const std::uint8_t> bytes, const Callback& c
     }
 }
 
+void TelegramParser::Idle(const Callback& callback) {
+    if (pending_) {
+        Deliver(callback);
+    }
+}
+
 void TelegramParser::Timeout(const Callback& callback) {
+    Idle(callback);
     while (!frame_.empty()) {
         ++counters_.timeouts;
         Abandon();
@@ -31,6 +40,7 @@ void TelegramParser::Reset() {
     replay_pos_ = 0;
     expected_size_ = 0;
     out_of_sync_ = false;
+    pending_ = false;
 }
 
 void TelegramParser::Drain(const Callback& callback) {
@@ -63,9 +73,21 @@ void TelegramParser::Abandon() {
                    frame_.end());
     frame_.clear();
     expected_size_ = 0;
+    pending_ = false;
 }
 
 void TelegramParser::Step(std::uint8_t byte, const Callback& callback) {
+    if (pending_) {
+        if (byte == kStx || byte == kAck || byte == kNak) {
+            Deliver(callback);  // then the byte is parsed below as usual
+        } else {
+            ++counters_.bad_followers;
+            callback(ParserEvent::kBadFollower, telegram_);
+            frame_.push_back(byte);  // parsed again after the frame's bytes
+            Abandon();
+            return;
+        }
+    }
     if (frame_.empty()) {
         if (byte == kStx) {
             frame_.push_back(byte);
@@ -110,7 +132,16 @@ void TelegramParser::Step(std::uint8_t byte, const Callback& callback) {
         Abandon();
         return;
     }
+    if (check_follower_) {
+        pending_ = true;
+        return;
+    }
+    Deliver(callback);
+}
+
+void TelegramParser::Deliver(const Callback& callback) {
     const bool reply = sender_ == Sender::kScanner;
+    const std::size_t crc_at = expected_size_ - 2;
     telegram_.address = frame_[1];
     telegram_.command = frame_[4];
     const std::size_t data_end = reply ? crc_at - 1 : crc_at;
@@ -119,6 +150,7 @@ void TelegramParser::Step(std::uint8_t byte, const Callback& callback) {
     telegram_.status = reply ? frame_[crc_at - 1] : kStatusOk;
     frame_.clear();
     expected_size_ = 0;
+    pending_ = false;
     out_of_sync_ = false;
     ++counters_.telegrams;
     callback(ParserEvent::kTelegram, telegram_);

@@ -33,14 +33,33 @@ using vlms::Seconds;
 void VirtualLms200::Impl::PowerOn() {
     baud = cfg.power_on_baud;
     op_mode = mode::kRequest;
+    stream_mode = OutputMode::Continuous();
     installation = false;
+}
+
+void VirtualLms200::Impl::SendPowerOn(Clock::time_point at) {
+    Chunk c;
+    c.bytes = EncodeTelegram(MakePowerOnTelegram(TypeString()));
+    c.hold_until = at;
+    EnqueueFrame(std::move(c));
+}
+
+bool VirtualLms200::Impl::Streaming() const {
+    return op_mode == mode::kStreamAll || op_mode == mode::kStreamPartial ||
+           op_mode == mode::kStreamMean || op_mode == mode::kStreamSubRange ||
+           op_mode == mode::kStreamMeanSubRange;
 }
 
 void VirtualLms200::Impl::Open() {
     variant = cfg.variant;
     config = cfg.config;
+    if (!cfg.eeprom_path.empty() && access(cfg.eeprom_path.c_str(), F_OK) == 0) {
+        config = ReadEepromFile(cfg.eeprom_path);  // what the last 0x77 stored
+    }
     format = FormatOf(config);
     PowerOn();
+    // No 0x90 here: the unit was powered before any host opened the line (a pty opened by a
+    // client flushes whatever came before anyway). Resets and power cycles send it.
     pty.Open(cfg.link_path, baud);
     const Clock::time_point now = Clock::now();
     epoch = now;
@@ -94,6 +113,9 @@ void VirtualLms200::Impl::EnqueueFrame(Chunk c, std::optional<Clock::time_point>
         c.intact = false;
         ++stats.drop_faults;
     }
+    if (c.scan_index && c.intact && Roll(f.collide_rate)) {
+        ApplyCollision(c);
+    }
     ++stats.telegrams_sent;
     tx.push_back(std::move(c));
 }
@@ -112,9 +134,29 @@ std::int64_t VirtualLms200::Impl::TurnsDone(Clock::time_point now) const {
 }
 
 /// Queues the next B0 telegram if the line is free; true if one was queued.
+void VirtualLms200::Impl::ApplyCollision(Chunk& c) {
+    // Dropping byte i shifts the rest left; the receiver then takes the next telegram's STX
+    // as the last CRC byte. Look for the i (after the header) where the CRC still matches.
+    std::vector<std::uint8_t>& b = c.bytes;
+    const std::size_t n = b.size();
+    std::vector<std::uint8_t> cand(n);
+    for (std::size_t i = 5; i + 1 < n; ++i) {
+        std::copy(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(i), cand.begin());
+        std::copy(b.begin() + static_cast<std::ptrdiff_t>(i + 1), b.end(),
+                  cand.begin() + static_cast<std::ptrdiff_t>(i));
+        cand[n - 1] = kStx;
+        const std::uint16_t crc = static_cast<std::uint16_t>(cand[n - 2] | (cand[n - 1] << 8U));
+        if (Crc16(std::span(cand).first(n - 2)) == crc) {
+            b.erase(b.begin() + static_cast<std::ptrdiff_t>(i));
+            c.intact = false;
+            ++stats.collision_faults;
+            return;
+        }
+    }
+}
+
 bool VirtualLms200::Impl::Produce() {
-    const bool streaming = op_mode == mode::kStreamAll || op_mode == mode::kStreamPartial;
-    if (!streaming || !tx.empty() || parser.InFrame() || stats.source_exhausted) {
+    if (!Streaming() || !tx.empty() || parser.InFrame() || stats.source_exhausted) {
         return false;  // a request arriving pauses the stream; one frame at a time
     }
     return QueueNewestScan(false);
@@ -140,6 +182,10 @@ void VirtualLms200::Impl::Receive(Clock::time_point now) {
             break;
         }
         last_rx = now;
+        if (now < busy_until) {  // resetting: nothing is heard
+            parser.Reset();
+            continue;
+        }
         if (cfg.check_host_baud && pty.ClientBaud() != baud) {
             stats.wrong_baud_bytes += static_cast<std::uint64_t>(n);
             parser.Reset();  // at the wrong rate the bytes are garbled beyond use
@@ -158,7 +204,7 @@ void VirtualLms200::Impl::Finish(Chunk& c) {
             ++stats.scans_sent;
         }
         if (observer) {
-            observer(SentScan{*c.scan_index, c.intact, c.beam0_wall_s});
+            observer(SentScan{*c.scan_index, c.intact, c.beam0_wall_s, c.partial, c.command});
         }
     }
     if (c.baud_after != 0) {
@@ -171,8 +217,14 @@ void VirtualLms200::Impl::Finish(Chunk& c) {
 
 void VirtualLms200::Impl::Transmit(Clock::time_point now) {
     const double byte_s = ByteTimeS(baud);
-    while (!tx.empty() && next_byte <= now) {
+    while (!tx.empty()) {
         Chunk& c = tx.front();
+        if (c.pos == 0 && c.hold_until > next_byte) {
+            next_byte = c.hold_until;  // e.g. the EEPROM write before the F7 reply
+        }
+        if (next_byte > now) {
+            break;
+        }
         const auto due = static_cast<std::size_t>(Seconds(now - next_byte) / byte_s) + 1;
         const std::size_t n = std::min(due, c.bytes.size() - c.pos);
         std::span<std::uint8_t> out(c.bytes.data() + c.pos, n);
@@ -201,7 +253,7 @@ void VirtualLms200::Impl::Transmit(Clock::time_point now) {
 void VirtualLms200::Impl::Disconnect(const std::atomic<bool>& stop) {
     for (Chunk& c : tx) {
         if (c.scan_index && observer) {
-            observer(SentScan{*c.scan_index, false, c.beam0_wall_s});
+            observer(SentScan{*c.scan_index, false, c.beam0_wall_s, c.partial, c.command});
         }
     }
     tx.clear();
@@ -221,6 +273,7 @@ void VirtualLms200::Impl::Disconnect(const std::atomic<bool>& stop) {
     mutex.lock();
     PowerOn();
     pty.Open(cfg.link_path, baud);
+    SendPowerOn(Clock::now());
     slave_path = pty.slave_path();
     const Clock::time_point now = Clock::now();
     next_byte = now;
@@ -231,17 +284,18 @@ void VirtualLms200::Impl::Disconnect(const std::atomic<bool>& stop) {
 double VirtualLms200::Impl::WaitS(Clock::time_point now) const {
     double wait = kMaxWaitS;
     if (!tx.empty()) {
-        wait = std::max(kMinWaitS, Seconds(next_byte - now));
+        const Clock::time_point start = std::max(next_byte, tx.front().hold_until);
+        wait = std::max(kMinWaitS, Seconds(start - now));
         // The telegram's last byte goes out on time, not at the next ~1 ms burst: the host's
         // arrival time (and so its scan clock, scan_clock.hpp) sees the real line timing.
         const Chunk& c = tx.front();
         const double last_byte_s =
-            Seconds(next_byte - now) +
+            Seconds(start - now) +
             static_cast<double>(c.bytes.size() - c.pos - 1) * ByteTimeS(baud);
         if (last_byte_s > 0.0) {
             wait = std::min(wait, last_byte_s);
         }
-    } else if (op_mode == mode::kStreamAll || op_mode == mode::kStreamPartial) {
+    } else if (Streaming()) {
         // Wake just after the next mirror turn ends: a completed sweep goes out at once.
         const double turn_s = core::Lms200Timing::kTurnPeriodS;
         const double next_turn_s = static_cast<double>(TurnsDone(now) + 1) * turn_s;

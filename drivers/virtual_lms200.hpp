@@ -35,16 +35,27 @@ public:
 /// Faults injected into the scanner's telegrams (never into the raw ACK/NAK bytes).
 /// Rates are probabilities per telegram.
 struct FaultConfig {
-    double crc_rate = 0.0;             // one bit flipped after the header (bad CRC)
-    double garbage_rate = 0.0;         // 1..32 random bytes sent before the telegram
-    double drop_rate = 0.0;            // one byte of the telegram never sent
+    double crc_rate = 0.0;      // one bit flipped after the header (bad CRC)
+    double garbage_rate = 0.0;  // 1..32 random bytes sent before the telegram
+    double drop_rate = 0.0;     // one byte of the telegram never sent
+    /// A measured-value telegram loses the one byte whose loss keeps the CRC valid when the
+    /// next telegram's STX completes it (a CRC collision, issue #13 item 3); telegrams with
+    /// no such byte (about 99 %) go out intact.
+    double collide_rate = 0.0;
     double disconnect_period_s = 0.0;  // 0 = never; else the device vanishes every S seconds
     double offline_s = 0.3;            // how long it stays away (then powers on at 9600)
     std::uint64_t seed = 1;
     /// Throws InputError naming the field when a rate is outside [0, 1] or a period negative.
     void Validate() const;
 };
-/// Parses "crc=P,garbage=P,drop=P,disconnect=S" (any subset, any order). Throws InputError.
+/// Reads an EEPROM file written by the virtual scanner. Throws InputError naming the file,
+/// the field and the rule.
+[[nodiscard]] ConfigBlock ReadEepromFile(const std::string& path);
+/// Writes it (temporary file + rename). Throws InputError if the file cannot be written.
+void WriteEepromFile(const std::string& path, const ConfigBlock& config);
+
+/// Parses "crc=P,garbage=P,drop=P,collide=P,disconnect=S" (any subset, any order). Throws
+/// InputError.
 [[nodiscard]] FaultConfig ParseFaults(std::string_view spec);
 
 struct VirtualLms200Config {
@@ -52,6 +63,11 @@ struct VirtualLms200Config {
     int power_on_baud = 9600;  // as the real unit unless a permanent rate was stored
     Variant variant;           // 180 deg, 1 deg
     ConfigBlock config = ConfigBlock::Default();  // 34 bytes (V02.x); 32 for the old profile
+    /// The EEPROM: when set, the configuration is read from this file at start (if it exists;
+    /// it then replaces `config`) and written to it (atomically) by every accepted 0x77.
+    std::string eeprom_path;
+    double config_write_s = 3.0;  // 0x77: the EEPROM write before the F7 reply (TL: seconds)
+    double reset_s = 1.0;         // 0x10: from the 0x91 reply to the 0x90 power-on telegram
     /// Ignore requests (and garble output) while the host's terminal speed, read from the
     /// master side, differs from the emulated rate: "wrong baud => no answer".
     bool check_host_baud = true;
@@ -72,19 +88,24 @@ struct VirtualLms200Stats {
     std::uint64_t drop_faults = 0;
     std::uint64_t garbage_faults = 0;
     std::uint64_t garbage_bytes = 0;
+    std::uint64_t collision_faults = 0;  // telegrams sent with a CRC-preserving byte drop
+    std::uint64_t config_writes = 0;     // accepted 0x77 (EEPROM writes)
     std::uint64_t disconnects = 0;
     bool source_exhausted = false;
     int baud = 9600;
     std::uint8_t operating_mode = mode::kRequest;
 };
 
-/// Reported once per B0 telegram when its last byte was written (or it was cut off).
+/// Reported once per measured-value telegram when its last byte was written (or it was cut
+/// off).
 struct SentScan {
-    std::uint64_t index = 0;  // ScanSource sweep index
+    std::uint64_t index = 0;  // ScanSource sweep index (the last one for mean values)
     bool intact = false;      // every byte written unchanged
     /// When beam 0 of this sweep was measured by the emulated mirror (system clock, s since
     /// the epoch): the driver's latency-corrected stamp estimates this.
     double beam0_wall_s = 0.0;
+    int partial = -1;             // partial scan number in mode 0x2A, else -1
+    std::uint8_t command = 0xB0;  // B0, B6, B7 or BF
 };
 
 class VirtualLms200 {

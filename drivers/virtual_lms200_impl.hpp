@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "casmap/drivers/output_mode.hpp"
 #include "casmap/drivers/pseudo_terminal.hpp"
 #include "casmap/drivers/telegram_parser.hpp"
 #include "casmap/drivers/virtual_lms200.hpp"
@@ -37,6 +38,9 @@ struct Chunk {
     std::optional<std::uint64_t> scan_index;
     bool intact = true;
     double beam0_wall_s = 0.0;
+    int partial = -1;
+    std::uint8_t command = 0xB0;
+    Clock::time_point hold_until{};  // not sent before (EEPROM write, reset)
 };
 
 inline constexpr double kRequestGapTimeoutS = 0.1;  // a request's bytes come within 6 ms (TL 4.3)
@@ -65,7 +69,9 @@ struct VirtualLms200::Impl {
     // Emulated device.
     int baud = 9600;
     std::uint8_t op_mode = mode::kRequest;
+    OutputMode stream_mode;  // parameters of the streaming mode in force
     bool installation = false;
+    Clock::time_point busy_until{};  // requests are not heard before (reset)
     Variant variant;
     ConfigBlock config;
     core::Lms200Format format;
@@ -76,12 +82,20 @@ struct VirtualLms200::Impl {
     Clock::time_point epoch;    // mirror turn 0
     double epoch_wall_s = 0.0;  // the same instant on the system clock
     std::optional<std::int64_t> origin_turn;
-    std::optional<std::int64_t> last_sent_unit;  // scan (0x24) or turn (0x2A) last queued
+    std::optional<std::int64_t> last_sent_unit;  // telegram unit last queued (UnitTurns)
     Clock::time_point last_rx;
     Clock::time_point next_disconnect;
     MeasuredValues values;
 
     void PowerOn();
+    void SendPowerOn(Clock::time_point at);
+    [[nodiscard]] bool Streaming() const;
+    /// Mirror turns per telegram of `m`: the scan's turns; n x that for mean values; 1 for
+    /// partial scans.
+    [[nodiscard]] int UnitTurns(const OutputMode& m) const;
+    /// The values of telegram `unit` of mode `m` into `values` (false: source exhausted).
+    bool BuildValues(const OutputMode& m, std::int64_t unit, Chunk& c);
+    void ApplyCollision(Chunk& c);
     void Open();
     bool Roll(double p);
     void EnqueueRaw(std::uint8_t byte);

@@ -9,6 +9,7 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/lms200.hpp"
+#include "casmap/drivers/output_mode.hpp"
 #include "casmap/drivers/scan_codec.hpp"
 #include "casmap/drivers/telegram.hpp"
 #include "casmap/drivers/telegram_parser.hpp"
@@ -29,13 +30,26 @@ void ExerciseParsers(const Telegram& t) {
             case 0xA0:
                 (void)ParseModeReply(t);
                 break;
-            case 0xB0: {
+            case 0xB0:
+            case 0xB6:
+            case 0xB7:
+            case 0xBF: {
                 const MeasuredValues v = ParseMeasuredValues(t);
                 Check(MakeMeasuredValues(v) == t);
-                const Variant variant{180, 100};
-                if (v.values.size() == static_cast<std::size_t>(variant.BeamCount())) {
-                    (void)ScanFromValues(v, casmap::core::Lms200Format{}, variant, 0.0);
-                }
+                FrameExpectation e;
+                e.mode.kind = t.command == 0xB6   ? OutputKind::kMeanValues
+                              : t.command == 0xB7 ? OutputKind::kSubRange
+                              : t.command == 0xBF ? OutputKind::kMeanSubRange
+                              : v.partial         ? OutputKind::kPartial
+                                                  : OutputKind::kContinuous;
+                e.mode.mean_scans = v.sample_size;
+                e.mode.first_beam = v.first_beam;
+                e.mode.last_beam = v.last_beam;
+                e.variant = Variant{180, 50};
+                e.realtime_indices = v.realtime_index.size() == 1;
+                e.format.units = v.units;
+                CheckMeasuredValues(v, e);  // throws InputError unless fully consistent
+                (void)ScanFromFrame(v, e, 0.0);
                 break;
             }
             case 0xB1:
@@ -70,8 +84,11 @@ void ExerciseParsers(const Telegram& t) {
     }
 }
 
-void RunParser(Sender sender, std::span<const std::uint8_t> data, std::size_t chunk) {
-    TelegramParser parser(sender);
+void RunParser(Sender sender,
+               std::span<const std::uint8_t> data,
+               std::size_t chunk,
+               bool check_follower) {
+    TelegramParser parser(sender, 0, check_follower);
     std::uint64_t in_telegrams = 0;
     const TelegramParser::Callback cb = [&](ParserEvent e, const Telegram& t) {
         if (e != ParserEvent::kTelegram) {
@@ -101,8 +118,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     const std::span<const std::uint8_t> all(data, size);
     const std::size_t chunk = 1 + data[0] % 64;
-    RunParser(Sender::kScanner, all.subspan(1), chunk);
-    RunParser(Sender::kHost, all.subspan(1), 1);
+    RunParser(Sender::kScanner, all.subspan(1), chunk, (data[0] & 0x40U) != 0);
+    RunParser(Sender::kHost, all.subspan(1), 1, false);
     if (const std::optional<Telegram> t = DecodeTelegram(all)) {
         Check(EncodeTelegram(*t) == std::vector<std::uint8_t>(all.begin(), all.end()));
         ExerciseParsers(*t);

@@ -231,8 +231,9 @@ TEST(ScanCodec, TimingOfTheVariants) {
     EXPECT_NEAR(SweepDurationS({180, 50}), 1.5 / 75.0, 1e-12);
     EXPECT_NEAR(ScanPeriodS({100, 25}), 4.0 / 75.0, 1e-12);
     EXPECT_NEAR(TransmissionTimeS(372, 38400), 0.096875, 1e-12);
-    const core::Scan s =
-        ScanFromValues(MeasuredValues{std::vector<std::uint16_t>(101, 5)}, {}, {100, 100}, 0.0);
+    MeasuredValues v;
+    v.values.assign(101, 5);
+    const core::Scan s = ScanFromValues(v, {}, {100, 100}, 0.0);
     EXPECT_NEAR(s.start_angle_rad, -50.0 * std::numbers::pi / 180.0, 1e-12);
 }
 

@@ -159,6 +159,7 @@ TEST(VirtualLms200, BadChecksumGetsNakAndInstallationModeGuardsConfigWrites) {
     NumberedSource source;
     VirtualLms200Config vc;
     vc.link_path = LinkPath("nak");
+    vc.config_write_s = 0.1;  // the default 3 s EEPROM write is tested in protocol tests
     VirtualLms200 scanner(vc, source);
     scanner.Start();
     SerialPort port(vc.link_path, 9600);
