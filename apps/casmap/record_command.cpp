@@ -1,13 +1,20 @@
 // casmap record --device PATH [--baud N] [--scans N | --duration S] --out RUN.h5
-//                [--variant ANGLE,RES_DEG] [--poses FILE] [--timeout S]
-//                [--stamps scan-clock|arrival]
+//                [--variant ANGLE,RES_DEG] [--mode MODE] [--realtime-indices]
+//                [--poses FILE] [--timeout S] [--stamps scan-clock|arrival]
 // Records scans from an LMS 200 (a real one, or `casmap serve`) into a run file. The driver
-// starts at 9600 baud and switches to --baud. Stops after --scans or --duration, on
-// SIGINT/SIGTERM, or (with an error) after --timeout seconds without a scan. Prints one JSON
-// line: {"scans", "bytes", "crc_errors", "resyncs", "reconnects", "scans_per_second"}.
-// Scans are stamped on the system clock (docs/drivers.md); --poses adds a pose file in that
-// clock (docs/pose-file.md), read when recording ends, as the run's /poses so `casmap map`
-// can map the run.
+// starts at 9600 baud and switches to --baud. --mode picks the output mode (continuous,
+// mean:N, subrange:A-B, mean-subrange:N:A-B, partial; partial scans of an interleaved variant
+// are joined into complete scans). Every input is checked before connecting; a scanner that
+// is absent or fails during the start-up is retried with back-off until --timeout. Stops
+// after --scans or --duration, on SIGINT/SIGTERM, or (with an error) after --timeout seconds
+// without a scan. Prints one JSON line: {"scans", "bytes", "crc_errors", "bad_followers",
+// "malformed", "resyncs", "reconnects", "connect_attempts", "scans_per_second"}. Scans are
+// stamped on the system clock (docs/drivers.md); --poses adds a pose file in that clock
+// (docs/pose-file.md), read when recording ends, as the run's /poses so `casmap map` can map
+// the run. Whatever was received is written even when something fails afterwards.
+#include <unistd.h>
+
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -17,10 +24,12 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "apps/casmap/commands.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/drivers/lms200_driver.hpp"
+#include "casmap/drivers/partial_scans.hpp"
 #include "casmap/drivers/pose_file.hpp"
 #include "casmap/io/run_file.hpp"
 
@@ -57,6 +66,8 @@ struct RecordOptions {
     std::string poses;
     double timeout_s = 10.0;
     std::string stamps = "scan-clock";
+    std::string mode = "continuous";
+    bool realtime_indices = false;
 };
 
 /// "180,1" / "180,0.5" / "100,0.25" (degrees) -> Variant; InputError otherwise.
@@ -85,11 +96,94 @@ drivers::Variant ParseVariant(const std::string& text) {
     throw MakeInputError("command line", "--variant", text, rule);
 }
 
-void CheckOutput(const std::string& out) {
-    const fs::path path(out);
-    const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-    if (path.filename().empty() || !fs::is_directory(dir)) {
-        throw MakeInputError(out, "--out", out, "directory " + dir.string() + " does not exist");
+namespace fs_check {
+/// The folder of `path` must exist and take a new file (checked by creating one).
+void CheckWritableFolder(const std::string& path, const std::string& field) {
+    const fs::path p(path);
+    const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+    if (p.filename().empty() || !fs::is_directory(dir)) {
+        throw MakeInputError(path, field, path, "folder " + dir.string() + " does not exist");
+    }
+    if (fs::is_directory(p)) {
+        throw MakeInputError(path, field, path, "is a folder, not a file name");
+    }
+    const fs::path probe = dir / (".casmap_probe_" + std::to_string(getpid()));
+    FILE* f = std::fopen(probe.c_str(), "w");
+    if (f == nullptr) {
+        throw MakeInputError(path, field, path, "folder " + dir.string() + " is not writable");
+    }
+    std::fclose(f);
+    fs::remove(probe);
+}
+}  // namespace fs_check
+
+/// Everything checked before the scanner is touched (issue #13 item 2).
+void CheckInputs(const RecordOptions& opt) {
+    fs_check::CheckWritableFolder(opt.out, "--out");
+    if (!(opt.timeout_s > 0.0) || !std::isfinite(opt.timeout_s)) {
+        throw MakeInputError("command line", "--timeout", std::to_string(opt.timeout_s),
+                             "a finite number of seconds > 0");
+    }
+    if (!(opt.duration_s >= 0.0) || !std::isfinite(opt.duration_s)) {
+        throw MakeInputError("command line", "--duration", std::to_string(opt.duration_s),
+                             "a finite number of seconds >= 0");
+    }
+    if (!opt.poses.empty()) {
+        // `casmap serve --poses-out` may write the file only once streaming began: it may be
+        // missing now, but then its folder must exist; if it exists it must be a file.
+        const fs::path p(opt.poses);
+        if (fs::exists(p)) {
+            if (!fs::is_regular_file(p)) {
+                throw MakeInputError(opt.poses, "--poses", opt.poses, "is not a regular file");
+            }
+            if (access(p.c_str(), R_OK) != 0) {
+                throw MakeInputError(opt.poses, "--poses", opt.poses, "is not readable");
+            }
+        } else {
+            const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+            if (!fs::is_directory(dir)) {
+                throw MakeInputError(opt.poses, "--poses", opt.poses,
+                                     "neither the file nor its folder exists");
+            }
+        }
+    }
+}
+
+/// True for errors worth retrying at start-up: the device is absent or vanished, or no LMS
+/// answered (yet). A path that exists but is no terminal, or a refused setting, is final.
+bool Transient(const std::string& device, const std::exception& e) {
+    if (dynamic_cast<const drivers::SerialError*>(&e) != nullptr) {
+        return true;
+    }
+    std::error_code ec;
+    return !fs::exists(device, ec);
+}
+
+/// Connects, retrying with back-off (0.1 s doubling to 1 s) until `timeout_s` has passed.
+int ConnectWithRetry(drivers::Lms200Driver& driver, const RecordOptions& opt) {
+    const Clock::time_point start = Clock::now();
+    double backoff_s = 0.1;
+    for (int attempt = 1;; ++attempt) {
+        try {
+            driver.Connect();
+            return attempt;
+        } catch (const std::exception& e) {
+            const double elapsed_s = std::chrono::duration<double>(Clock::now() - start).count();
+            if (!Transient(opt.device, e) || g_record_stop ||
+                elapsed_s + backoff_s > opt.timeout_s) {
+                if (!Transient(opt.device, e)) {
+                    throw;
+                }
+                char seconds[32];
+                std::snprintf(seconds, sizeof(seconds), "%g", opt.timeout_s);
+                throw MakeInputError(opt.device, "--device", opt.device,
+                                     std::string("no LMS 200 ready within --timeout ") + seconds +
+                                         " s (" + std::to_string(attempt) +
+                                         " attempts; last: " + e.what() + ")");
+            }
+            std::this_thread::sleep_for(std::chrono::duration<double>(backoff_s));
+            backoff_s = std::min(1.0, 2.0 * backoff_s);
+        }
     }
 }
 
@@ -103,6 +197,9 @@ std::string ConfigYaml(const RecordOptions& opt, const drivers::Lms200Driver& dr
          ", resolution_cdeg: " + std::to_string(d.variant.resolution_cdeg) + "}\n";
     y += "  measuring_mode: " + std::to_string(d.config.measuring_mode()) + "\n";
     y += "  units: " + std::string(d.config.units() == 1 ? "mm" : "cm") + "\n";
+    y += "  output_mode: \"" + d.output.ToString() + "\"\n";
+    y += std::string("  realtime_indices: ") + (d.config.realtime_indices() ? "true" : "false") +
+         "\n";
     y += std::string("stamps: \"system clock, s since 1970; beam 0 = ") +
          (driver.synchronised() ? "sweep grid t0 + k T (scan clock)"
                                 : "arrival - transmission - sweep") +
@@ -111,29 +208,60 @@ std::string ConfigYaml(const RecordOptions& opt, const drivers::Lms200Driver& dr
     return y;
 }
 
-void RunRecord(const RecordOptions& opt) {
-    CheckOutput(opt.out);
-    if (!(opt.timeout_s > 0.0)) {
-        throw MakeInputError("command line", "--timeout", std::to_string(opt.timeout_s), "> 0");
-    }
-    if (opt.duration_s < 0.0) {
-        throw MakeInputError("command line", "--duration", std::to_string(opt.duration_s), ">= 0");
-    }
-    io::RunData run;
+drivers::DriverConfig DriverConfigOf(const RecordOptions& opt) {
     drivers::DriverConfig dc;
     dc.device = opt.device;
     dc.baud = opt.baud;
     if (!opt.variant.empty()) {
         dc.variant = ParseVariant(opt.variant);
     }
+    dc.output = drivers::ParseOutputMode(opt.mode, "--mode");
+    if (opt.realtime_indices) {
+        dc.config_changes.availability = drivers::ConfigBlock::kRealTimeIndices;
+    }
     if (opt.stamps == "arrival") {
         dc.stamps = drivers::StampMode::kArrival;
     } else if (opt.stamps != "scan-clock") {
         throw MakeInputError("command line", "--stamps", opt.stamps, "scan-clock or arrival");
     }
-    drivers::Lms200Driver driver(dc);
+    return dc;
+}
+
+/// Writes what was received; a failure with --poses still writes the scans (without poses),
+/// and a failing --out falls back to a file in the system's temporary folder.
+void SaveRun(const RecordOptions& opt, io::RunData& run) {
+    std::string poses_error;
+    if (!opt.poses.empty()) {  // read last: `casmap serve --poses-out` writes it on demand
+        try {
+            run.poses = drivers::ReadPoseFile(opt.poses);
+        } catch (const InputError& e) {
+            poses_error = e.what();
+        }
+    }
+    try {
+        io::WriteRunFile(opt.out, run);
+    } catch (const std::exception& e) {
+        const fs::path rescue =
+            fs::temp_directory_path() / ("casmap_record_" + std::to_string(getpid()) + ".h5");
+        io::WriteRunFile(rescue.string(), run);
+        throw std::runtime_error(std::string(e.what()) + "; the " +
+                                 std::to_string(run.scans.size()) +
+                                 " scans received were saved to " + rescue.string());
+    }
+    if (!poses_error.empty()) {
+        throw std::runtime_error(poses_error + "; the " + std::to_string(run.scans.size()) +
+                                 " scans received were saved without poses to " + opt.out);
+    }
+}
+
+void RunRecord(const RecordOptions& opt) {
+    CheckInputs(opt);
+    io::RunData run;
+    drivers::Lms200Driver driver(DriverConfigOf(opt));
     const RecordSignals signals;
-    driver.Connect();
+    const int attempts = ConnectWithRetry(driver, opt);
+    drivers::PartialScanAssembler assembler(driver.info().variant);
+    const bool partial = driver.info().output.kind == drivers::OutputKind::kPartial;
     const Clock::time_point start = Clock::now();
     Clock::time_point last_scan = start;
     Clock::time_point first_arrival;
@@ -157,6 +285,12 @@ void RunRecord(const RecordOptions& opt) {
             continue;
         }
         last_scan = Clock::now();
+        if (partial) {  // one geometry per run: join the turns of each complete scan
+            scan = assembler.Add(*scan);
+            if (!scan) {
+                continue;
+            }
+        }
         if (run.scans.empty()) {
             first_arrival = last_scan;
         }
@@ -169,21 +303,21 @@ void RunRecord(const RecordOptions& opt) {
     const double rate = run.scans.size() >= 2 && span_s > 0.0
                             ? static_cast<double>(run.scans.size() - 1) / span_s
                             : 0.0;
+    std::printf(
+        "{\"scans\": %zu, \"bytes\": %llu, \"crc_errors\": %llu, \"bad_followers\": %llu, "
+        "\"malformed\": %llu, \"resyncs\": %llu, \"reconnects\": %llu, "
+        "\"connect_attempts\": %d, \"scans_per_second\": %.3f}\n",
+        run.scans.size(), static_cast<unsigned long long>(c.bytes),
+        static_cast<unsigned long long>(c.crc_errors),
+        static_cast<unsigned long long>(c.bad_followers),
+        static_cast<unsigned long long>(c.malformed), static_cast<unsigned long long>(c.resyncs),
+        static_cast<unsigned long long>(c.reconnects), attempts, rate);
+    std::fflush(stdout);
     if (!run.scans.empty()) {
-        if (!opt.poses.empty()) {  // read last: `casmap serve --poses-out` writes it on demand
-            run.poses = drivers::ReadPoseFile(opt.poses);
-        }
         run.format = driver.info().format;
         run.config_yaml = ConfigYaml(opt, driver);
-        io::WriteRunFile(opt.out, run);
+        SaveRun(opt, run);
     }
-    std::printf(
-        "{\"scans\": %zu, \"bytes\": %llu, \"crc_errors\": %llu, \"resyncs\": %llu, "
-        "\"reconnects\": %llu, \"scans_per_second\": %.3f}\n",
-        run.scans.size(), static_cast<unsigned long long>(c.bytes),
-        static_cast<unsigned long long>(c.crc_errors), static_cast<unsigned long long>(c.resyncs),
-        static_cast<unsigned long long>(c.reconnects), rate);
-    std::fflush(stdout);
     if (run.scans.empty() && !timed_out) {
         throw std::runtime_error(opt.device + ": no scan received; nothing written");
     }
@@ -208,11 +342,17 @@ void AddRecordCommand(CLI::App& app, CommonOptions& common) {
         ->required();
     sub->add_option("--baud", opt->baud, "rate to switch to (9600, 19200, 38400, 500000)")
         ->capture_default_str();
-    CLI::Option* scans = sub->add_option("--scans", opt->scans, "stop after N scans");
+    CLI::Option* scans =
+        sub->add_option("--scans", opt->scans, "stop after N scans")->check(CLI::PositiveNumber);
     CLI::Option* duration = sub->add_option("--duration", opt->duration_s, "stop after S seconds");
     scans->excludes(duration);
     sub->add_option("--out", opt->out, "run file to write (HDF5)")->required();
     sub->add_option("--variant", opt->variant, "set the variant ANGLE,RES_DEG (e.g. 180,0.5)");
+    sub->add_option("--mode", opt->mode,
+                    "output mode: continuous, mean:N, subrange:A-B, mean-subrange:N:A-B, partial")
+        ->capture_default_str();
+    sub->add_flag("--realtime-indices", opt->realtime_indices,
+                  "configure the scanner to append real-time scan indices (EEPROM write)");
     sub->add_option("--poses", opt->poses, "pose file (docs/pose-file.md) stored as /poses");
     sub->add_option("--timeout", opt->timeout_s, "give up after S seconds without a scan")
         ->capture_default_str();

@@ -1,15 +1,20 @@
 // casmap serve (--scene FILE --motion T|TR|TP|TRP|vehicle [--speed M_S] [--seed N] [--rig R]
 //               | --run RUN.h5) [--link PATH] [--baud N]
-//               [--faults crc=P,garbage=P,drop=P,disconnect=S] [--poses-out FILE]
+//               [--faults crc=P,garbage=P,drop=P,collide=P,disconnect=S] [--poses-out FILE]
+//               [--eeprom FILE]
 // A virtual LMS 200 on a pseudo-terminal (drivers/virtual_lms200.hpp) streaming the scans of a
 // run file or of a run simulated at start-up, until the run is exhausted or SIGINT/SIGTERM.
 // --baud is the power-on rate (9600 as the real unit); the client switches it. Prints the
 // device path on start and one JSON line of counters on exit. --poses-out writes the run's
 // poses re-stamped into the system clock of the served sweeps (docs/pose-file.md), so that
-// `casmap record --poses` can give a recorded run its poses.
+// `casmap record --poses` can give a recorded run its poses. --eeprom keeps the scanner's
+// configuration (what clients write with 0x77) in a file across restarts.
+#include <unistd.h>
+
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -63,7 +68,25 @@ struct ServeOptions {
     int baud = 9600;
     std::string faults;
     std::string poses_out;
+    std::string eeprom;
 };
+
+namespace fs = std::filesystem;
+
+/// The folder of an output file must exist and be writable before anything is served.
+void CheckOutputFile(const std::string& path, const std::string& field) {
+    const fs::path p(path);
+    const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+    if (p.filename().empty() || !fs::is_directory(dir)) {
+        throw MakeInputError(path, field, path, "folder " + dir.string() + " does not exist");
+    }
+    if (fs::is_directory(p)) {
+        throw MakeInputError(path, field, path, "is a folder, not a file name");
+    }
+    if (access(dir.c_str(), W_OK) != 0) {
+        throw MakeInputError(path, field, path, "folder " + dir.string() + " is not writable");
+    }
+}
 
 /// The run to serve: read from --run, or simulated from --scene/--motion (simulator builds).
 io::RunData LoadServedRun(const ServeOptions& opt, const CommonOptions& common, bool speed_given) {
@@ -124,9 +147,19 @@ void PrintStats(const drivers::VirtualLms200Stats& s) {
 void RunServe(const ServeOptions& opt, const CommonOptions& common, bool speed_given) {
     CheckSource(opt);
     drivers::CheckLmsBaud(opt.baud, "--baud");
+    if (!opt.poses_out.empty()) {
+        CheckOutputFile(opt.poses_out, "--poses-out");
+    }
+    if (!opt.eeprom.empty()) {
+        CheckOutputFile(opt.eeprom, "--eeprom");
+        if (fs::exists(opt.eeprom)) {
+            (void)drivers::ReadEepromFile(opt.eeprom);  // a broken file: exit 2 before serving
+        }
+    }
     drivers::VirtualLms200Config vc;
     vc.link_path = opt.link;
     vc.power_on_baud = opt.baud;
+    vc.eeprom_path = opt.eeprom;
     if (!opt.faults.empty()) {
         vc.faults = drivers::ParseFaults(opt.faults);
     }
@@ -151,6 +184,8 @@ void RunServe(const ServeOptions& opt, const CommonOptions& common, bool speed_g
     std::atomic<bool> serving_done{false};
     double offset_s = 0.0;
     std::thread pose_writer;
+    std::mutex pose_error_mutex;
+    std::string pose_error;
     if (!opt.poses_out.empty()) {
         if (run.poses.empty()) {
             throw MakeInputError(what, "--poses-out", opt.poses_out, "the run holds no poses");
@@ -166,7 +201,13 @@ void RunServe(const ServeOptions& opt, const CommonOptions& common, bool speed_g
                 std::this_thread::sleep_for(std::chrono::milliseconds(10));
             }
             if (have_offset) {
-                io::WriteTextAtomically(opt.poses_out, drivers::PoseFileText(run.poses, offset_s));
+                try {
+                    io::WriteTextAtomically(opt.poses_out,
+                                            drivers::PoseFileText(run.poses, offset_s));
+                } catch (const std::exception& e) {  // the folder went away while serving
+                    std::lock_guard lock(pose_error_mutex);
+                    pose_error = e.what();
+                }
             }
         });
     }
@@ -191,6 +232,14 @@ void RunServe(const ServeOptions& opt, const CommonOptions& common, bool speed_g
     std::fflush(stderr);
     scanner.Run(g_serve_stop, true);
     PrintStats(scanner.stats());
+    serving_done = true;
+    if (pose_writer.joinable()) {
+        pose_writer.join();
+    }
+    std::lock_guard lock(pose_error_mutex);
+    if (!pose_error.empty()) {
+        throw std::runtime_error("--poses-out: " + pose_error);
+    }
 }
 
 }  // namespace
@@ -209,9 +258,12 @@ void AddServeCommand(CLI::App& app, CommonOptions& common) {
     sub->add_option("--baud", opt->baud, "power-on baud rate (9600, 19200, 38400, 500000)")
         ->capture_default_str();
     sub->add_option("--faults", opt->faults,
-                    "inject faults: crc=P,garbage=P,drop=P (per telegram),disconnect=S (s)");
+                    "inject faults: crc=P,garbage=P,drop=P,collide=P (per telegram),"
+                    "disconnect=S (s)");
     sub->add_option("--poses-out", opt->poses_out,
                     "write the run's poses, stamped in the served sweeps' system clock");
+    sub->add_option("--eeprom", opt->eeprom,
+                    "file keeping the scanner's configuration across restarts (0x77 writes)");
     AddThreadsOption(sub, common);
     sub->callback([opt, speed, &common] { RunServe(*opt, common, speed->count() > 0); });
 }

@@ -371,9 +371,11 @@ TEST_F(ServeRecordCommand, MapOfARecordedRunEqualsTheDirectMapAt500000) {
 
 TEST_F(ServeRecordCommand, BadInputIsExitTwoWithoutARunFile) {
     const fs::path out = dir_ / "rec.h5";
-    Result r = Casmap("record --device /nonexistent/ttyX --out " + out.string());
+    // An absent device is retried with back-off until --timeout, then named.
+    Result r = Casmap("record --device /nonexistent/ttyX --timeout 1 --out " + out.string());
     EXPECT_EQ(r.code, 2) << r.output;
     EXPECT_NE(r.output.find("/nonexistent/ttyX"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("attempts"), std::string::npos) << r.output;
     r = Casmap("record --device /dev/null --out " + out.string());
     EXPECT_EQ(r.code, 2) << r.output;
     EXPECT_NE(r.output.find("not a terminal"), std::string::npos) << r.output;
@@ -386,6 +388,109 @@ TEST_F(ServeRecordCommand, BadInputIsExitTwoWithoutARunFile) {
     EXPECT_EQ(r.code, 2) << r.output;
     EXPECT_NE(r.output.find("crc"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(out));
+}
+
+// Issue #13 item 2: every input is checked before connecting (no device is needed to see
+// these errors, and they come at once even with a long --timeout).
+TEST_F(ServeRecordCommand, RecordChecksItsInputsBeforeConnecting) {
+    const std::string device = " --device /nonexistent/ttyX --timeout 60";
+    const auto started = std::chrono::steady_clock::now();
+    Result r = Casmap("record" + device + " --out " + (dir_ / "missing" / "rec.h5").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("--out"), std::string::npos) << r.output;
+    r = Casmap("record" + device + " --out " + dir_.string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("is a folder"), std::string::npos) << r.output;
+    r = Casmap("record" + device + " --poses " + dir_.string() + " --out " +
+               (dir_ / "rec.h5").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("--poses"), std::string::npos) << r.output;
+    r = Casmap("record" + device + " --poses " + (dir_ / "nodir" / "p.txt").string() + " --out " +
+               (dir_ / "rec.h5").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    r = Casmap("record" + device + " --mode mean:1 --out " + (dir_ / "rec.h5").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("mean scans"), std::string::npos) << r.output;
+    r = Casmap("record" + device + " --mode fast --out " + (dir_ / "rec.h5").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("--mode"), std::string::npos) << r.output;
+    r = Casmap("record" + device + " --scans 0 --out " + (dir_ / "rec.h5").string());
+    EXPECT_NE(r.code, 0) << r.output;
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
+              30.0);
+    EXPECT_FALSE(fs::exists(dir_ / "rec.h5"));
+}
+
+// Issue #13 item 1: --poses-out into a missing folder is refused before serving, and no
+// --link symlink is left behind.
+TEST_F(ServeRecordCommand, ServeRefusesAPoseFileItCannotWrite) {
+    io::WriteRunFile(dir_ / "served.h5", NumberedRun(20));
+    const fs::path link = dir_ / "lms";
+    const Result r =
+        Casmap("serve --run " + (dir_ / "served.h5").string() + " --link " + link.string() +
+               " --poses-out " + (dir_ / "missing" / "poses.txt").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("--poses-out"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(fs::symlink_status(link)));
+}
+
+// Issue #13 item 8: a device absent at start is waited for (retry with back-off).
+TEST_F(ServeRecordCommand, RecordWaitsForAScannerThatAppearsLater) {
+    io::WriteRunFile(dir_ / "served.h5", NumberedRun(400));
+    const fs::path link = dir_ / "lms";
+    const fs::path out = dir_ / "rec.h5";
+    std::thread late([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+        StartServe({"--run", (dir_ / "served.h5").string(), "--link", link.string()});
+    });
+    const Result r = Casmap("record --device " + link.string() +
+                            " --baud 500000 --scans 10 --timeout 20 --out " + out.string());
+    late.join();
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(r.output.find("\"connect_attempts\": 1,"), std::string::npos) << r.output;
+    EXPECT_EQ(io::ReadRunFile(out).scans.size(), 10U);
+}
+
+// Every streaming mode through the CLI: partial scans of 0.5 deg are joined into complete
+// scans equal to the served ones; sub-ranges carry their beams; mean values one beam mean.
+TEST_F(ServeRecordCommand, RecordAcceptsEveryStreamingMode) {
+    io::RunData served = NumberedRun(600);
+    for (core::Scan& s : served.scans) {  // 0.5 deg: 361 beams
+        s.angle_step_rad = 0.5 * kDeg;
+        s.beam_period_s = (1.0 / 75.0) / 720.0;
+        s.beams.resize(361, s.beams.back());
+    }
+    io::WriteRunFile(dir_ / "served.h5", served);
+    const fs::path link = dir_ / "lms";
+    StartServe({"--run", (dir_ / "served.h5").string(), "--link", link.string()});
+    ASSERT_TRUE(WaitForLink(link));
+    struct Case {
+        std::string mode;
+        std::size_t beams;
+        double start_deg;
+    };
+    for (const Case& c : {Case{"partial", 361, -90.0}, Case{"subrange:21-60", 40, -80.0},
+                          Case{"mean:2", 361, -90.0}, Case{"mean-subrange:2:1-10", 10, -90.0}}) {
+        const fs::path out = dir_ / "rec.h5";
+        const Result r = Casmap("record --device " + link.string() +
+                                " --baud 500000 --scans 6 --timeout 10 --mode " + c.mode +
+                                " --out " + out.string());
+        ASSERT_EQ(r.code, 0) << c.mode << ": " << r.output;
+        const io::RunData rec = io::ReadRunFile(out);
+        ASSERT_EQ(rec.scans.size(), 6U) << c.mode;
+        for (const core::Scan& s : rec.scans) {
+            ASSERT_EQ(s.beams.size(), c.beams) << c.mode;
+            EXPECT_NEAR(s.start_angle_rad, c.start_deg * kDeg, 1e-9) << c.mode;
+            if (c.mode == "partial") {  // complete scans, value for value
+                const core::Scan& want = served.scans.at(s.beams[0].raw);
+                for (std::size_t b = 0; b < s.beams.size(); ++b) {
+                    EXPECT_EQ(s.beams[b].raw, want.beams[b].raw) << "beam " << b;
+                }
+            }
+        }
+        EXPECT_NE(r.output.find("\"malformed\": 0"), std::string::npos) << r.output;
+        fs::remove(out);
+    }
 }
 
 }  // namespace
