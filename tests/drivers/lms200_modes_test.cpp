@@ -247,19 +247,21 @@ TEST(Lms200Modes, RealTimeIndicesLockTheScanClockAt38400) {
     d.Close();
     ASSERT_GE(err_ms.size(), 30U);
     // The first 8 scans were held and re-stamped with the warm-up envelope; after 2 s the
-    // envelope has seen ~20 telegrams: compare the last 20.
-    std::vector<double> tail(err_ms.end() - 20, err_ms.end());
-    std::vector<double> abs_ms;
-    for (const double e : tail) {
-        abs_ms.push_back(std::abs(e));
-    }
-    std::sort(abs_ms.begin(), abs_ms.end());
-    std::printf(
-        "38400 + real-time indices: |stamp error| median %.3f ms, max %.3f ms (%zu scans)\n",
-        abs_ms[abs_ms.size() / 2], abs_ms.back(), abs_ms.size());
-    // Without indices the stamps are late by 0..13.3 ms (the line); locked, the median error
-    // is the window's smallest wait for the line (generous bound for a loaded machine).
-    EXPECT_LT(abs_ms[abs_ms.size() / 2], 3.0);
+    // envelope has seen ~20 telegrams: look at the last 20.
+    const std::vector<double> tail(err_ms.end() - 20, err_ms.end());
+    const auto [lo, hi] = std::minmax_element(tail.begin(), tail.end());
+    std::vector<double> sorted = tail;
+    std::sort(sorted.begin(), sorted.end());
+    std::printf("38400 + real-time indices: stamp error min %.3f median %.3f max %.3f ms (%zu)\n",
+                *lo, sorted[sorted.size() / 2], *hi, tail.size());
+    // Locked: every scan in its own sweep slot (error within one period, 13.3 ms, never
+    // early by more than scheduling noise) and a near-constant offset: the smallest wait for
+    // the line among the window's telegrams (line-limited telegrams go out back to back, so
+    // only that one bounds the phase; 0-4.3 ms at 181 values, depending on which wait the
+    // window holds). Without indices the error is the per-scan wait itself, 0..13.3 ms.
+    EXPECT_GT(*lo, -1.0);
+    EXPECT_LT(*hi, 13.3);
+    EXPECT_LT(*hi - *lo, 5.0);
     EXPECT_GT(d.counters().realtime_scans, 30U);
 }
 
