@@ -163,20 +163,22 @@ std::vector<T> ReadList(const std::string& file, const YAML::Node& node, const s
 }
 
 void ReadDomain(const std::string& file, const YAML::Node& node, scenegen::DomainConfig& d) {
-    ReadSection(
-        file, node, "domain", d.Ranges(),
-        {"motion_weights", "angular_resolutions_deg", "range_modes", "pose_error_probability"},
-        [&](const std::string& key, const YAML::Node& v, const std::string& field) {
-            if (key == "motion_weights") {
-                ReadWeights(file, v, field, scenegen::kMotionNames, d.motion_weights);
-            } else if (key == "angular_resolutions_deg") {
-                d.angular_resolutions_deg = ReadList<double>(file, v, field);
-            } else if (key == "range_modes") {
-                d.range_modes = ReadList<std::string>(file, v, field);
-            } else {
-                d.pose_error_probability = Number(file, v, field);
-            }
-        });
+    ReadSection(file, node, "domain", d.Ranges(),
+                {"motion_weights", "angular_resolutions_deg", "range_modes",
+                 "pose_error_probability", "triangle_probability"},
+                [&](const std::string& key, const YAML::Node& v, const std::string& field) {
+                    if (key == "motion_weights") {
+                        ReadWeights(file, v, field, scenegen::kMotionNames, d.motion_weights);
+                    } else if (key == "angular_resolutions_deg") {
+                        d.angular_resolutions_deg = ReadList<double>(file, v, field);
+                    } else if (key == "range_modes") {
+                        d.range_modes = ReadList<std::string>(file, v, field);
+                    } else if (key == "triangle_probability") {
+                        d.triangle_probability = Number(file, v, field);
+                    } else {
+                        d.pose_error_probability = Number(file, v, field);
+                    }
+                });
 }
 
 void ReadTop(const std::string& file, const YAML::Node& root, scenegen::DatasetSpec& spec) {
@@ -277,6 +279,7 @@ std::string DatasetSpecToYaml(const scenegen::DatasetSpec& spec_in) {
         y += (i == 0 ? "" : ", ") + d.range_modes[i];
     }
     y += "]\n  pose_error_probability: " + FormatNumber(d.pose_error_probability) + "\n";
+    y += "  triangle_probability: " + FormatNumber(d.triangle_probability) + "\n";
     y += RangesYaml(spec.domain.Ranges());
     y += "outputs: {filtered: " + std::string(spec.outputs.filtered ? "true" : "false") +
          ", cas_classes: " + (spec.outputs.cas_classes ? "true" : "false") +

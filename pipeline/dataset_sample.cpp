@@ -40,8 +40,11 @@ Json DrawJson(const scenegen::DomainDraw& d) {
         rig["vehicle_mount_height_m"] = d.vehicle_mount_height_m;
     } else {
         rig["sensor_height_m"] = d.sensor_height_m;
-        rig["roll"] = {{"amplitude_deg", d.roll_amplitude_deg}, {"period_s", d.roll_period_s}};
-        rig["pitch"] = {{"center_deg", d.pitch_center_deg},
+        rig["roll"] = {{"shape", d.roll_triangle ? "triangle" : "sinusoid"},
+                       {"amplitude_deg", d.roll_amplitude_deg},
+                       {"period_s", d.roll_period_s}};
+        rig["pitch"] = {{"shape", d.pitch_triangle ? "triangle" : "sinusoid"},
+                        {"center_deg", d.pitch_center_deg},
                         {"amplitude_deg", d.pitch_amplitude_deg},
                         {"period_s", d.pitch_period_s}};
     }

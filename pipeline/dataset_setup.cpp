@@ -96,9 +96,11 @@ SimSetup SampleSetup(const scenegen::DatasetSpec& spec,
         t.speed_m_s = d.speed_m_s;
         t.sensor_height_m = d.sensor_height_m;
         t.mount_pitch_deg = d.mount_pitch_deg;
-        t.roll_profile = {rig::ProfileShape::kSinusoid, 0.0, d.roll_amplitude_deg, d.roll_period_s,
-                          0.0};
-        t.pitch_profile = {rig::ProfileShape::kSinusoid, d.pitch_center_deg, d.pitch_amplitude_deg,
+        const auto shape = [](bool triangle) {
+            return triangle ? rig::ProfileShape::kTriangle : rig::ProfileShape::kSinusoid;
+        };
+        t.roll_profile = {shape(d.roll_triangle), 0.0, d.roll_amplitude_deg, d.roll_period_s, 0.0};
+        t.pitch_profile = {shape(d.pitch_triangle), d.pitch_center_deg, d.pitch_amplitude_deg,
                            d.pitch_period_s, 0.0};
     }
     SetSensor(d, s.lms);

@@ -88,6 +88,9 @@ void DomainConfig::Validate(const std::string& where) const {
             fail("range_modes", m, "allowed: 8m, 16m, 32m (mm units), 80m (cm units)");
         }
     }
+    if (!(triangle_probability >= 0.0 && triangle_probability <= 1.0)) {
+        fail("triangle_probability", FormatNumber(triangle_probability), "allowed: 0..1");
+    }
     if (!(pose_error_probability >= 0.0 && pose_error_probability <= 1.0)) {
         fail("pose_error_probability", FormatNumber(pose_error_probability), "allowed: 0..1");
     }
@@ -110,6 +113,8 @@ DomainDraw DrawDomain(const DomainConfig& k, Rng& rng) {
     d.pitch_amplitude_deg = rng.Draw(k.pitch_amplitude_deg);
     d.pitch_period_s = DrawPeriod(k.pitch_period_s, d.pitch_amplitude_deg, rng);
     d.pitch_center_deg = rng.Draw({25.0 + d.pitch_amplitude_deg, 40.0 - d.pitch_amplitude_deg});
+    d.roll_triangle = rng.Chance(k.triangle_probability);
+    d.pitch_triangle = rng.Chance(k.triangle_probability);
     d.vehicle_mount_height_m = rng.Draw(k.vehicle_mount_height_m);
     d.angular_resolution_deg =
         k.angular_resolutions_deg[rng.Below(k.angular_resolutions_deg.size())];

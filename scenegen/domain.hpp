@@ -31,6 +31,7 @@ struct DomainConfig {
     Range roll_period_s{2.0, 6.0};
     Range pitch_amplitude_deg{2.0, 7.0};
     Range pitch_period_s{1.5, 5.0};
+    double triangle_probability = 0.3;  // roll/pitch profile triangular, else sinusoidal
     // Vehicle.
     Range vehicle_speed_m_s{0.5, 1.5};
     Range vehicle_mount_pitch_deg{9.0, 14.0};
@@ -65,9 +66,11 @@ struct DomainDraw {
     double lateral_offset_m = 0.0;
     double roll_amplitude_deg = 0.0;
     double roll_period_s = 2.0;
+    bool roll_triangle = false;  // triangular profile (constant rate 4 A / T), else sinusoid
     double pitch_center_deg = 32.5;
     double pitch_amplitude_deg = 0.0;
     double pitch_period_s = 2.0;
+    bool pitch_triangle = false;
     double vehicle_mount_height_m = 0.35;
     double angular_resolution_deg = 1.0;
     double field_of_view_deg = 180.0;
