@@ -118,8 +118,8 @@ protected:
         }
         return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     }
-    void Serve(const std::string& faults) {
-        io::WriteRunFile(dir_ / "served.h5", BlockRun(300));
+    void Serve(const std::string& faults, int scans = 300) {
+        io::WriteRunFile(dir_ / "served.h5", BlockRun(scans));
         std::vector<std::string> args{
             "serve",         "--run",         (dir_ / "served.h5").string(),
             "--link",        link().string(), "--poses-out",
@@ -191,6 +191,36 @@ TEST_F(LiveCommand, KeepsEveryScanThroughLineFaults) {
     EXPECT_GT(JsonNumber(r.output, "crc_errors"), 0) << r.output;
     EXPECT_EQ(JsonNumber(r.output, "dropped"), 0) << r.output;
     ExpectOutputs(out(), 100);
+}
+
+TEST_F(LiveCommand, ReconnectsWhenTheScannerVanishes) {
+    // The device disappears every second for 0.3 s; the mirror turns on meanwhile, so the run
+    // must outlast the reconnections.
+    Serve("disconnect=1", 1500);
+    const Result r =
+        Casmap("live --device " + link().string() + " --baud 500000 --poses " + poses().string() +
+               " --scans 150 --timeout 10 --out " + out().string() + WindowFlags());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_GE(JsonNumber(r.output, "reconnects"), 1) << r.output;
+    EXPECT_EQ(JsonNumber(r.output, "dropped"), 0) << r.output;
+    ExpectOutputs(out(), 150);
+}
+
+TEST_F(LiveCommand, AScannerThatStopsEndsWithEverythingWritten) {
+    Serve("");
+    std::thread stopper([this] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(2000));
+        Stop(serve_pid_);
+    });
+    const Result r =
+        Casmap("live --device " + link().string() + " --baud 500000 --poses " + poses().string() +
+               " --timeout 2 --out " + out().string() + WindowFlags());
+    stopper.join();
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("no scan for 2 s; wrote the"), std::string::npos) << r.output;
+    const double scans = JsonNumber(r.output, "scans");
+    EXPECT_GT(scans, 20) << r.output;
+    EXPECT_EQ(static_cast<double>(io::ReadRunFile(out() / "run.h5").scans.size()), scans);
 }
 
 TEST_F(LiveCommand, ScansWithoutPosesAreCountedNotMapped) {
