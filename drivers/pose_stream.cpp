@@ -132,6 +132,9 @@ PoseSocket::PoseSocket(const std::string& spec) : spec_(spec) {
     } else {
         fail("udp:PORT or unix:PATH");
     }
+    // Room for bursts between polls (best effort: the kernel caps it at net.core.rmem_max).
+    const int bytes = 1 << 22;
+    ::setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &bytes, sizeof(bytes));
 }
 
 PoseSocket::~PoseSocket() {

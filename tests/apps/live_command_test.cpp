@@ -1,9 +1,12 @@
 // `casmap live` as a process: against `casmap serve` (a virtual LMS 200 on a pty, with and
 // without line faults; poses from serve's --poses-out file followed as it appears), against
 // the simulator in real time (simulator builds), stopping on SIGINT, and bad input.
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -221,6 +224,50 @@ TEST_F(LiveCommand, AScannerThatStopsEndsWithEverythingWritten) {
     const double scans = JsonNumber(r.output, "scans");
     EXPECT_GT(scans, 20) << r.output;
     EXPECT_EQ(static_cast<double>(io::ReadRunFile(out() / "run.h5").scans.size()), scans);
+}
+
+TEST_F(LiveCommand, TakesPosesFromAUdpSocket) {
+    Serve("");
+    const int port = 20000 + static_cast<int>(getpid() % 20000);
+    // A pose publisher: once serve has written its pose file, send its records over UDP in
+    // datagrams of 50 lines, as a robot's localisation would.
+    std::thread publisher([this, port] {
+        for (int i = 0; i < 500 && !fs::exists(poses()); ++i) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+        std::ifstream in(poses());
+        const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+        sockaddr_in addr{};
+        addr.sin_family = AF_INET;
+        addr.sin_port = htons(static_cast<std::uint16_t>(port));
+        addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        std::string line;
+        std::string batch;
+        int n = 0;
+        const auto send = [&] {
+            ::sendto(fd, batch.data(), batch.size(), 0, reinterpret_cast<sockaddr*>(&addr),
+                     sizeof(addr));
+            batch.clear();
+            n = 0;
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));  // 25x real time
+        };
+        while (std::getline(in, line)) {
+            batch += line + "\n";
+            if (++n == 50) {
+                send();
+            }
+        }
+        send();
+        ::close(fd);
+    });
+    const Result r = Casmap("live --device " + link().string() +
+                            " --baud 500000 --poses-socket udp:" + std::to_string(port) +
+                            " --scans 120 --timeout 10 --out " + out().string() + WindowFlags());
+    publisher.join();
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(JsonNumber(r.output, "scans_mapped"), 120) << r.output;
+    EXPECT_GT(JsonNumber(r.output, "poses"), 1000) << r.output;
 }
 
 TEST_F(LiveCommand, ScansWithoutPosesAreCountedNotMapped) {
