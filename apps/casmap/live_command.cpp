@@ -3,6 +3,7 @@
 //                [--realtime])
 //             --out DIR [--window R,C] [--m M] [--obstacle-cell-m S] [--snapshot-every-s N]
 //             [--duration S] [--scans N] [--timeout S] [--pose-tolerance-s T]
+//             [--set NAME=VALUE]...
 // Live mapping with the paper's active window (pipeline/live.hpp). Parses flags, prints a
 // status line on a terminal (nothing otherwise) and one JSON line of counters at the end.
 #include <unistd.h>
@@ -13,6 +14,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "apps/casmap/commands.hpp"
 #include "casmap/core/input_error.hpp"
@@ -66,6 +68,7 @@ struct LiveOptions {
     std::uint64_t scans = 0;
     double timeout_s = 10.0;
     double pose_tolerance_s = 0.05;
+    std::vector<std::string> sets;  // CAS parameters NAME=VALUE, as casmap filter --set
 };
 
 void ParseWindow(const std::string& text, mapper::ActiveWindowConfig& w) {
@@ -175,6 +178,9 @@ void RunLiveCommand(const LiveOptions& opt, const CommonOptions& common, bool sp
             const double pitch = core::RpyFromQuaternion(p0.rotation).y();
             cfg.window.m = mapper::LookAheadRows(cfg.window, p0.translation.z(), pitch, 0.3);
         }
+        // Eq. 8's v: the rig's cruise speed, as `casmap bench` and datasets use.
+        cfg.window.cas.speed_m_s =
+            sim.setup.vehicle ? sim.setup.vehicle_config.speed_m_s : sim.setup.table.speed_m_s;
         poses = std::make_unique<TrajectoryPoseStream>(sim.poses);
         source = std::move(sim.scans);
 #else
@@ -187,6 +193,16 @@ void RunLiveCommand(const LiveOptions& opt, const CommonOptions& common, bool sp
     if (opt.m != 0) {
         cfg.window.m = opt.m;
     }
+    // CAS parameters by name; the window's mapping cell and increment follow the filter's.
+    mapper::FilterParams params;
+    params.cas = cfg.window.cas;
+    for (const std::string& s : opt.sets) {
+        params.SetAssignment(s);
+    }
+    params.Validate();
+    cfg.window.cas = params.cas;
+    cfg.window.a = params.cas.a;
+    cfg.window.cell_m = params.cas.cell_m;
     const LiveSignals signals;
     const bool tty = ::isatty(STDERR_FILENO) != 0;
     LiveStatusFn on_status;
@@ -242,6 +258,8 @@ void AddLiveCommand(CLI::App& app, CommonOptions& common) {
     sub->add_option("--pose-tolerance-s", opt->pose_tolerance_s,
                     "largest pose gap a scan may span; wider: the scan is dropped")
         ->capture_default_str();
+    sub->add_option("--set", opt->sets,
+                    "CAS parameter NAME=VALUE (repeatable; names as casmap filter --set)");
     AddThreadsOption(sub, common);
     sub->callback([opt, &common, speed] { RunLiveCommand(*opt, common, speed->count() > 0); });
 }

@@ -300,6 +300,10 @@ TEST_F(LiveCommand, BadInputExitsTwoNamingTheFlag) {
         Casmap("live --device /dev/null --poses p.txt --window 200 --out " + out().string());
     EXPECT_EQ(window.code, 2) << window.output;
     EXPECT_NE(window.output.find("--window"), std::string::npos) << window.output;
+    const Result set =
+        Casmap("live --device /dev/null --poses p.txt --set nonsense=1 --out " + out().string());
+    EXPECT_EQ(set.code, 2) << set.output;
+    EXPECT_NE(set.output.find("--set"), std::string::npos) << set.output;
     const Result m =
         Casmap("live --device /dev/null --poses p.txt --m 500 --out " + out().string());
     EXPECT_EQ(m.code, 2) << m.output;
