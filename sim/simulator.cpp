@@ -127,10 +127,12 @@ std::vector<ScanResult> Simulate(const World& world,
                                  const SimulateOptions& options) {
     const double period = options.period_s > 0.0 ? options.period_s : model.ScanPeriodS();
     std::vector<ScanResult> scans(options.scan_count);
+    core::ProgressCounter progress(options.progress, options.scan_count);
     core::ParallelFor(options.scan_count, options.threads, [&](std::size_t k) {
         scans[k] = CastScan(world, model, world_T_sensor,
                             options.start_s + static_cast<double>(k) * period,
                             options.first_scan_index + k);
+        progress.Advance();
     });
     return scans;
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "casmap/core/pose.hpp"
+#include "casmap/core/progress.hpp"
 #include "casmap/core/scan.hpp"
 #include "casmap/core/trajectory.hpp"
 #include "casmap/sensor_models/lms200_model.hpp"
@@ -46,7 +47,8 @@ struct SimulateOptions {
     double period_s = 0.0;       // between scan stamps; 0 = the model's scan period
     std::size_t scan_count = 0;  // scans to simulate
     std::uint64_t first_scan_index = 0;
-    int threads = 0;  // 0 = all cores; results never depend on it
+    int threads = 0;            // 0 = all cores; results never depend on it
+    core::ProgressFn progress;  // called once per finished scan (may be empty)
 };
 
 /// Scans k = 0..scan_count-1 at start_s + k * period_s with scan index first_scan_index + k,

@@ -1,36 +1,40 @@
-#include "casmap/core/progress.hpp"
+#include "apps/casmap/progress_bar.hpp"
 
 #include <unistd.h>
 
 #include <cstdio>
 
-namespace casmap::core {
+namespace casmap::app {
 
-Progress::Progress(std::string label, std::size_t total)
+ProgressBar::ProgressBar(std::string label)
     : label_(std::move(label)),
-      total_(total),
       enabled_(isatty(STDERR_FILENO) == 1),
       start_(std::chrono::steady_clock::now()),
       last_draw_(start_) {}
 
-Progress::~Progress() { Finish(); }
+ProgressBar::~ProgressBar() { Finish(); }
 
-void Progress::Advance(std::size_t n) {
+core::ProgressFn ProgressBar::Fn() {
+    return [this](std::size_t done, std::size_t total) { Update(done, total); };
+}
+
+void ProgressBar::Update(std::size_t done, std::size_t total) {
     const std::lock_guard<std::mutex> lock(mutex_);
-    done_ += n;
+    done_ = done;
+    total_ = total;
     Draw(done_ >= total_);
 }
 
-void Progress::Finish() {
+void ProgressBar::Finish() {
     const std::lock_guard<std::mutex> lock(mutex_);
-    if (enabled_ && !finished_) {
+    if (enabled_ && drawn_ && !finished_) {
         Draw(true);
         std::fputc('\n', stderr);
     }
     finished_ = true;
 }
 
-void Progress::Draw(bool force) {
+void ProgressBar::Draw(bool force) {
     if (!enabled_ || finished_) {
         return;
     }
@@ -39,6 +43,7 @@ void Progress::Draw(bool force) {
         return;
     }
     last_draw_ = now;
+    drawn_ = true;
     constexpr int kWidth = 30;
     const double fraction =
         total_ == 0 ? 1.0 : static_cast<double>(done_) / static_cast<double>(total_);
@@ -49,4 +54,4 @@ void Progress::Draw(bool force) {
     std::fflush(stderr);
 }
 
-}  // namespace casmap::core
+}  // namespace casmap::app
