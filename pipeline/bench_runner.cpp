@@ -10,16 +10,14 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
+#include "casmap/io/rig_config.hpp"
 #include "casmap/io/scene_file.hpp"
 #include "casmap/io/sensor_config.hpp"
 #include "casmap/mapper/filters.hpp"
 #include "casmap/mapper/metrics.hpp"
+#include "casmap/pipeline/data_dir.hpp"
 #include "casmap/sensor_models/lms200_model.hpp"
 #include "casmap/sim/ground_truth.hpp"
-
-#ifndef CASMAP_COURSES_DIR
-#define CASMAP_COURSES_DIR ""
-#endif
 
 namespace casmap::pipeline {
 namespace {
@@ -153,21 +151,48 @@ std::vector<std::string> ParseTests(const std::string& text, const std::string& 
     return out;
 }
 
-std::string FindCoursesDir(const std::string& flag) {
-    if (!flag.empty()) {
-        if (!fs::is_directory(flag)) {
-            throw MakeInputError("", "--courses-dir", flag, "is not a directory");
-        }
-        return flag;
-    }
-    for (const std::string& dir :
-         {std::string("scenes/courses"), std::string(CASMAP_COURSES_DIR)}) {
-        if (!dir.empty() && fs::is_regular_file(fs::path(dir) / "course01.yaml")) {
-            return dir;
+void CheckCoursesAndTests(const std::vector<int>& courses, const std::vector<std::string>& tests) {
+    std::set<int> seen_courses;
+    for (const int c : courses) {
+        if (c < 1 || c > 16 || !seen_courses.insert(c).second) {
+            throw MakeInputError("", "courses", std::to_string(c),
+                                 "allowed: courses 1..16, each at most once");
         }
     }
-    throw MakeInputError("", "--courses-dir", "",
-                         "scenes/courses not found here or in the source tree; give --courses-dir");
+    if (courses.empty()) {
+        throw MakeInputError("", "courses", "", "at least one course");
+    }
+    std::set<std::string> seen_tests;
+    for (const std::string& t : tests) {
+        const std::vector<std::string> all = {"T", "TR", "TP", "TRP"};
+        if (std::find(all.begin(), all.end(), t) == all.end() || !seen_tests.insert(t).second) {
+            throw MakeInputError("", "tests", t, "allowed: T, TR, TP, TRP, each at most once");
+        }
+    }
+    if (tests.empty()) {
+        throw MakeInputError("", "tests", "", "at least one of T, TR, TP, TRP");
+    }
+}
+
+std::vector<std::string> SortedTests(const std::vector<std::string>& tests) {
+    std::vector<std::string> out;
+    for (const std::string t : {"T", "TR", "TP", "TRP"}) {
+        if (std::find(tests.begin(), tests.end(), t) != tests.end()) {
+            out.push_back(t);
+        }
+    }
+    return out;
+}
+
+std::string FindCoursesDir(const std::string& dir) {
+    if (!dir.empty()) {
+        if (!fs::is_regular_file(fs::path(dir) / "course01.yaml")) {
+            throw MakeInputError("", "courses_dir", dir,
+                                 "must be a directory holding course01.yaml .. course16.yaml");
+        }
+        return dir;
+    }
+    return CoursesDir().string();
 }
 
 std::string CoursePath(const std::string& dir, int course) {
@@ -212,7 +237,10 @@ std::vector<Course> LoadCourses(const BenchSettings& settings,
 SimulatedRun SimulateBenchRun(const SimSetup& setup,
                               const Course& course,
                               const core::Trajectory& poses) {
-    return SimulateRun(setup, course.scene, *course.world, poses, 1, nullptr, false);
+    SimulateRunOptions options;
+    options.threads = 1;
+    options.truth = false;
+    return SimulateRun(setup, course.scene, *course.world, poses, options);
 }
 
 MappedBenchRun MapBenchRun(const SimSetup& setup,
@@ -306,16 +334,19 @@ CasScore ScoreCas(const MappedBenchRun& run,
                     mapper::ClassPercentages(cas.classes, run.mapped.certainty)};
 }
 
-BenchSettings CheckBenchSettings(const std::string& courses_dir_flag,
-                                 const std::string& rig_path,
-                                 const std::string& sensor_path,
-                                 std::uint64_t seed) {
+BenchSettings ResolveBenchSettings(const std::string& courses_dir,
+                                   const std::string& rig_path,
+                                   const std::string& sensor_path,
+                                   std::uint64_t seed) {
     BenchSettings settings;
-    settings.courses_dir = FindCoursesDir(courses_dir_flag);
+    settings.courses_dir = FindCoursesDir(courses_dir);
     settings.rig_path = rig_path;
     settings.sensor_path = sensor_path;
+    if (!rig_path.empty()) {
+        (void)io::LoadRigConfig(rig_path);  // a bad file fails before any work
+    }
     if (!sensor_path.empty()) {
-        (void)io::LoadLms200Config(sensor_path);  // a bad file exits 2 before any work
+        (void)io::LoadLms200Config(sensor_path);
     }
     settings.seed = seed;
     return settings;

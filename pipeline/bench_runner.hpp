@@ -22,9 +22,14 @@ namespace casmap::pipeline {
 /// "T,TR,TP,TRP" subset, in that order; InputError naming `field`.
 [[nodiscard]] std::vector<std::string> ParseTests(const std::string& text,
                                                   const std::string& field);
-/// The scenes/courses directory: `flag` if given, else ./scenes/courses, else the source
-/// tree's. InputError if none exists.
-[[nodiscard]] std::string FindCoursesDir(const std::string& flag);
+/// Throws InputError naming "courses" or "tests" unless every course is in 1..16 and every
+/// test one of T, TR, TP, TRP, none repeated and neither list empty.
+void CheckCoursesAndTests(const std::vector<int>& courses, const std::vector<std::string>& tests);
+/// `tests` in the order T, TR, TP, TRP.
+[[nodiscard]] std::vector<std::string> SortedTests(const std::vector<std::string>& tests);
+/// The courses directory: `dir` if given (InputError naming "courses_dir" unless it holds
+/// course01.yaml), else CoursesDir() (data_dir.hpp).
+[[nodiscard]] std::string FindCoursesDir(const std::string& dir);
 /// <dir>/courseNN.yaml.
 [[nodiscard]] std::string CoursePath(const std::string& dir, int course);
 /// "course04_T".
@@ -48,12 +53,12 @@ struct BenchSettings {
     std::optional<double> speed_m_s;
 };
 
-/// Settings from the command line, validated before any work: the courses directory exists
-/// and a sensor file (if any) loads. Throws InputError naming the flag or file.
-[[nodiscard]] BenchSettings CheckBenchSettings(const std::string& courses_dir_flag,
-                                               const std::string& rig_path,
-                                               const std::string& sensor_path,
-                                               std::uint64_t seed);
+/// Resolves and checks the settings before any work: the courses directory exists and a
+/// sensor file (if any) loads. Throws InputError naming the field or file.
+[[nodiscard]] BenchSettings ResolveBenchSettings(const std::string& courses_dir,
+                                                 const std::string& rig_path,
+                                                 const std::string& sensor_path,
+                                                 std::uint64_t seed);
 /// Throws InputError naming `field` unless `path` names a file in an existing directory.
 void CheckWritableFile(const std::string& path, const std::string& field);
 

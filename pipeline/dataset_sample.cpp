@@ -235,7 +235,10 @@ Json Simulate(const scenegen::DatasetSpec& spec,
     files.insert(files.end(), {"rig.yaml", "sensor.yaml"});
     const sim::World world(scene);
     const core::Trajectory poses = RigTrajectory(setup, scene);
-    SimulatedRun sim = SimulateRun(setup, scene, world, poses, 1, nullptr, false);
+    SimulateRunOptions sim_options;
+    sim_options.threads = 1;
+    sim_options.truth = false;
+    SimulatedRun sim = SimulateRun(setup, scene, world, poses, sim_options);
     io::RunData& run = sim.run;
     sim::GroundTruthOptions truth_options;
     truth_options.clamp_to_datum = false;  // holes and ditches keep their negative heights

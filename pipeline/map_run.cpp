@@ -85,9 +85,9 @@ core::GridGeometry GridCoveringBeams(const std::vector<core::Scan>& scans,
     const double cols = std::floor((y_hi - grid.y0_m) / cell_m) + 1.0;
     constexpr double kMaxCells = 4000.0;
     if (rows > kMaxCells || cols > kMaxCells) {
-        throw MakeInputError(where, "scans",
-                             FormatNumber(rows) + " x " + FormatNumber(cols) + " cells",
-                             "the beams span more than 4000 x 4000 cells; give --grid");
+        throw MakeInputError(
+            where, "scans", FormatNumber(rows) + " x " + FormatNumber(cols) + " cells",
+            "the beams span more than 4000 x 4000 cells; give the grid explicitly");
     }
     grid.rows = static_cast<int>(rows);
     grid.cols = static_cast<int>(cols);

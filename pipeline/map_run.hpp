@@ -42,7 +42,7 @@ struct MappedRun {
 
 /// The smallest grid of `cell_m` cells (origin on a multiple of cell_m) holding the world
 /// x, y of every valid beam. Throws InputError naming `where` when no beam has a pose or the
-/// grid would exceed 4000 x 4000 cells (then --grid must be given).
+/// grid would exceed 4000 x 4000 cells (then the caller must choose a grid).
 [[nodiscard]] core::GridGeometry GridCoveringBeams(const std::vector<core::Scan>& scans,
                                                    const core::Trajectory& world_T_sensor,
                                                    double cell_m,

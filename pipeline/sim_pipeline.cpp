@@ -42,7 +42,7 @@ Eigen::Vector3d ParseVector3(const std::string& text, const std::string& field) 
 /// --pose-error NAME=VALUE: the fields of rig::PoseErrorConfig (vectors as X,Y,Z).
 void SetPoseError(rig::PoseErrorConfig& cfg, const std::string& assignment) {
     const std::size_t eq = assignment.find('=');
-    const std::string field = "--pose-error";
+    const std::string field = "pose_error";
     if (eq == std::string::npos) {
         throw MakeInputError("", field, assignment, "expected NAME=VALUE");
     }
@@ -109,9 +109,9 @@ SimSetup ResolveSimSetup(const SimFlags& flags) {
     s.vehicle = flags.motion == "vehicle";
     if (!s.vehicle) {
         try {
-            s.motion = rig::ParseMotion(flags.motion, "--motion");
+            s.motion = rig::ParseMotion(flags.motion, "motion");
         } catch (const InputError&) {
-            throw MakeInputError("", "--motion", flags.motion, "allowed: T, TR, TP, TRP, vehicle");
+            throw MakeInputError("", "motion", flags.motion, "allowed: T, TR, TP, TRP, vehicle");
         }
     }
     s.table.course = PaperCourse();
@@ -130,7 +130,7 @@ SimSetup ResolveSimSetup(const SimFlags& flags) {
         const double limit =
             s.vehicle ? rig::VehicleLimits::kMaxSpeedMS : rig::TableLimits::kMaxSpeedMS;
         if (!(v > 0.0 && v <= limit)) {
-            throw MakeInputError("", "--speed", FormatNumber(v),
+            throw MakeInputError("", "speed_m_s", FormatNumber(v),
                                  "allowed: > 0 and <= " + FormatNumber(limit) + " m/s (the " +
                                      (s.vehicle ? "vehicle" : "table") + "'s limit)");
         }
@@ -140,7 +140,7 @@ SimSetup ResolveSimSetup(const SimFlags& flags) {
     for (const std::string& a : flags.pose_error) {
         SetPoseError(s.pose_error, a);
     }
-    s.pose_error.Validate("--pose-error");
+    s.pose_error.Validate("pose_error");
     if (s.vehicle) {
         s.vehicle_config.Validate(s.rig_path.empty() ? "vehicle" : s.rig_path);
     } else {
@@ -210,26 +210,20 @@ SimulatedRun SimulateRun(const SimSetup& setup,
                          const core::Scene& scene,
                          const sim::World& world,
                          const core::Trajectory& true_poses,
-                         int threads,
-                         core::Progress* progress,
-                         bool truth) {
+                         const SimulateRunOptions& options) {
     const sensor_models::Lms200Model model(setup.lms, setup.seed);
-    const std::size_t count = ScanCountFor(model, true_poses);
-    const double start = true_poses.empty() ? 0.0 : true_poses.StartTime();
-    const double period = model.ScanPeriodS();
-    std::vector<sim::ScanResult> results(count);
-    core::ParallelFor(count, threads, [&](std::size_t k) {
-        results[k] =
-            sim::CastScan(world, model, true_poses, start + static_cast<double>(k) * period, k);
-        if (progress != nullptr) {
-            progress->Advance();
-        }
-    });
+    sim::SimulateOptions sim_options;
+    sim_options.start_s = true_poses.empty() ? 0.0 : true_poses.StartTime();
+    sim_options.period_s = model.ScanPeriodS();
+    sim_options.scan_count = ScanCountFor(model, true_poses);
+    sim_options.threads = options.threads;
+    sim_options.progress = options.progress;
+    std::vector<sim::ScanResult> results = sim::Simulate(world, model, true_poses, sim_options);
     SimulatedRun out;
     out.true_poses = true_poses;
     io::RunData& run = out.run;
-    run.scans.reserve(count);
-    run.truth.reserve(count);
+    run.scans.reserve(results.size());
+    run.truth.reserve(results.size());
     for (sim::ScanResult& r : results) {
         run.scans.push_back(std::move(r.scan));
         run.truth.push_back(std::move(r.truth));
@@ -240,8 +234,8 @@ SimulatedRun SimulateRun(const SimSetup& setup,
     run.seed = setup.seed;
     run.config_yaml = EffectiveConfigYaml(setup);
     run.maps.grid = setup.grid;
-    if (truth) {
-        run.maps.truth_m = sim::GroundTruthElevation(scene, setup.grid, threads);
+    if (options.truth) {
+        run.maps.truth_m = sim::GroundTruthElevation(scene, setup.grid, options.threads);
     }
     return out;
 }

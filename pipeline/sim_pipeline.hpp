@@ -67,16 +67,21 @@ struct SimulatedRun {
     core::Trajectory true_poses;  // what the simulator used
 };
 
+/// How SimulateRun runs (not what it simulates: results never depend on these).
+struct SimulateRunOptions {
+    int threads = 0;            // 0 = all cores
+    core::ProgressFn progress;  // once per finished scan; may be empty
+    bool truth = true;          // also compute the ground truth on setup.grid
+};
+
 /// Simulates every full scan `true_poses` covers (scan k at StartTime + k * scan period, scan
-/// index k), plus the ground truth on setup.grid unless `truth` is false. `progress` (may be
-/// null) advances once per scan. Identical output at any thread count.
+/// index k) with sim::Simulate, plus the ground truth on setup.grid unless options.truth is
+/// false. Identical output at any thread count.
 [[nodiscard]] SimulatedRun SimulateRun(const SimSetup& setup,
                                        const core::Scene& scene,
                                        const sim::World& world,
                                        const core::Trajectory& true_poses,
-                                       int threads,
-                                       core::Progress* progress,
-                                       bool truth = true);
+                                       const SimulateRunOptions& options = {});
 
 /// Number of scans SimulateRun will produce (for progress bars).
 [[nodiscard]] std::size_t ScanCount(const SimSetup& setup, const core::Trajectory& trajectory);

@@ -2,12 +2,10 @@
 
 #include <CLI/CLI.hpp>
 
-namespace casmap::pipeline {}
-
 namespace casmap::app {
 
-// Commands are thin clients of the pipeline library.
-using namespace casmap::pipeline;  // NOLINT(google-build-using-namespace)
+// Commands are thin clients of the pipeline library: flags -> option structs -> one pipeline
+// call -> print.
 
 /// Options every subcommand shares.
 struct CommonOptions {

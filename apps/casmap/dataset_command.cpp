@@ -31,7 +31,7 @@ struct DatasetFlags {
     std::uint64_t seed = 0;
 };
 
-void ParseShard(const std::string& text, DatasetOptions& options) {
+void ParseShard(const std::string& text, pipeline::DatasetOptions& options) {
     const std::size_t slash = text.find('/');
     std::size_t i = 0;
     std::size_t k = 0;
@@ -48,7 +48,7 @@ void ParseShard(const std::string& text, DatasetOptions& options) {
 }
 
 // One status line on a terminal: samples done, samples/s, ETA.
-void DrawProgress(const DatasetProgress& p) {
+void DrawProgress(const pipeline::DatasetProgress& p) {
     if (isatty(STDERR_FILENO) == 0) {
         return;
     }
@@ -70,20 +70,20 @@ void RunDatasetCommand(const DatasetFlags& flags, const CommonOptions& common, b
         spec.seed = flags.seed;
     }
     spec.Validate(flags.spec);
-    DatasetOptions options;
+    pipeline::DatasetOptions options;
     if (!flags.shard.empty()) {
         ParseShard(flags.shard, options);
     }
     options.threads = core::ResolveThreads(common.threads);
     options.progress = DrawProgress;
-    DatasetContext context;
+    pipeline::DatasetContext context;
     context.out_dir = flags.out;
-    context.rock_meshes = FindRockMeshes(flags.meshes);
-    const DistributedSession session;  // MPI when started by mpirun/srun, else one rank
+    context.rock_meshes = pipeline::FindRockMeshes(flags.meshes);
+    const pipeline::DistributedSession session;  // MPI when started by mpirun/srun, else one rank
     if (session.rank() == 0) {
         io::EnsureDirectory(context.out_dir);
     }
-    const DatasetSummary s = RunDataset(spec, context, options, session);
+    const pipeline::DatasetSummary s = pipeline::RunDataset(spec, context, options, session);
     if (session.rank() != 0) {
         return;
     }

@@ -83,13 +83,13 @@ void RunDemo(const DemoOptions& opt, const CommonOptions& common) {
     for (std::size_t i = 0; i < unknown.data.size(); ++i) {
         unknown.data[i] = map.certainty.data[i] == 0.0F ? 1 : 0;
     }
-    WriteMapFiles(dir, "elevation", map.elevation, "raw elevation H", "m", &unknown);
-    WriteMapFiles(dir, "certainty", map.certainty, "certainty C", "counts", &unknown);
-    WriteMapFiles(dir, "truth", map.truth, "ground truth", "m", nullptr);
+    pipeline::WriteMapFiles(dir, "elevation", map.elevation, "raw elevation H", "m", &unknown);
+    pipeline::WriteMapFiles(dir, "certainty", map.certainty, "certainty C", "counts", &unknown);
+    pipeline::WriteMapFiles(dir, "truth", map.truth, "ground truth", "m", nullptr);
     for (std::size_t m = 0; m < methods.size(); ++m) {
         const std::string name(mapper::ToString(methods[m]));
-        WriteMapFiles(dir, "filtered_" + name, results[m].elevation, "filtered: " + name, "m",
-                      nullptr);
+        pipeline::WriteMapFiles(dir, "filtered_" + name, results[m].elevation, "filtered: " + name,
+                                "m", nullptr);
     }
     io::WriteClassesPng(dir / "cas_classes.png", results[0].classes,
                         {{"untouched", 200, 200, 200},

@@ -26,29 +26,32 @@ struct MapOptions {
 /// The grid: --grid, else the run's own (written with its ground truth), else the beams' extent.
 core::GridGeometry ChooseGrid(const MapOptions& opt, const io::RunData& run) {
     if (!opt.grid.empty()) {
-        const core::GridGeometry grid = ParseGrid(opt.grid, "--grid");
+        const core::GridGeometry grid = pipeline::ParseGrid(opt.grid, "--grid");
         if (run.maps.grid && !(*run.maps.grid == grid)) {
             throw MakeInputError(opt.run, "--grid", opt.grid,
                                  "differs from the grid stored in the run file " +
-                                     GridYaml(*run.maps.grid) + "; its maps share one grid");
+                                     pipeline::GridYaml(*run.maps.grid) +
+                                     "; its maps share one grid");
         }
         return grid;
     }
     if (run.maps.grid) {
         return *run.maps.grid;
     }
-    return GridCoveringBeams(run.scans, run.poses, 0.025, opt.run);
+    return pipeline::GridCoveringBeams(run.scans, run.poses, 0.025, opt.run);
 }
 
-std::string MapYaml(const MapOptions& opt, const io::RunData& run, const MappedRun& mapped) {
+std::string MapYaml(const MapOptions& opt,
+                    const io::RunData& run,
+                    const pipeline::MappedRun& mapped) {
     const mapper::MapperStats& s = mapped.stats;
     std::string y = "# casmap map: the settings that produced the maps in this directory\n";
     y += "run: " + fs::absolute(opt.run).string() + "\n";
     y += "seed: " + (run.seed ? std::to_string(*run.seed) : std::string("null")) + "\n";
-    y += "grid: " + GridYaml(mapped.config.grid) + "\n";
+    y += "grid: " + pipeline::GridYaml(mapped.config.grid) + "\n";
     y += "mapper: {a: " + std::to_string(mapped.config.a) +
-         ", delta_l_m: " + FormatNumber(mapped.config.delta_l_m) +
-         ", scan_period_s: " + FormatNumber(mapped.config.scan_period_s) + "}\n";
+         ", delta_l_m: " + pipeline::FormatNumber(mapped.config.delta_l_m) +
+         ", scan_period_s: " + pipeline::FormatNumber(mapped.config.scan_period_s) + "}\n";
     y += "stats: {beams_seen: " + std::to_string(s.beams_seen) +
          ", beams_not_ok: " + std::to_string(s.beams_not_ok) +
          ", beams_no_pose: " + std::to_string(s.beams_no_pose) +
@@ -66,12 +69,13 @@ void RunMap(const MapOptions& opt) {
                              : fs::path(opt.out);
     io::EnsureDirectory(dir);
 
-    const MappedRun mapped = MapScans(run.scans, run.poses, grid);
-    const core::Raster<std::uint8_t> unknown = UnknownMask(mapped.certainty);
-    WriteMapFiles(dir, "elevation", mapped.elevation, "elevation (Eq. 6)", "m", &unknown);
-    WriteMapFiles(dir, "certainty", mapped.certainty, "certainty (Eq. 5)", "counts", &unknown);
+    const pipeline::MappedRun mapped = pipeline::MapScans(run.scans, run.poses, grid);
+    const core::Raster<std::uint8_t> unknown = pipeline::UnknownMask(mapped.certainty);
+    pipeline::WriteMapFiles(dir, "elevation", mapped.elevation, "elevation (Eq. 6)", "m", &unknown);
+    pipeline::WriteMapFiles(dir, "certainty", mapped.certainty, "certainty (Eq. 5)", "counts",
+                            &unknown);
     if (run.maps.truth_m && run.maps.grid && *run.maps.grid == grid) {
-        WriteMapFiles(dir, "truth", *run.maps.truth_m, "ground truth", "m", nullptr);
+        pipeline::WriteMapFiles(dir, "truth", *run.maps.truth_m, "ground truth", "m", nullptr);
     }
     io::WriteTextAtomically(dir / "map.yaml", MapYaml(opt, run, mapped));
     if (!run.config_yaml.empty()) {

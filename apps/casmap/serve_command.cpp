@@ -29,6 +29,7 @@
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/run_file.hpp"
 #ifdef CASMAP_WITH_SIM
+#include "apps/casmap/flag_names.hpp"
 #include "casmap/core/parallel.hpp"
 #include "casmap/io/scene_file.hpp"
 #include "casmap/pipeline/sim_pipeline.hpp"
@@ -88,13 +89,17 @@ void CheckOutputFile(const std::string& path, const std::string& field) {
     }
 }
 
+#ifdef CASMAP_WITH_SIM
+const FlagNames kSimFlags = {{"motion", "--motion"}, {"speed_m_s", "--speed"}};
+#endif
+
 /// The run to serve: read from --run, or simulated from --scene/--motion (simulator builds).
 io::RunData LoadServedRun(const ServeOptions& opt, const CommonOptions& common, bool speed_given) {
     if (!opt.run.empty()) {
         return io::ReadRunFile(opt.run);
     }
 #ifdef CASMAP_WITH_SIM
-    SimFlags flags;
+    pipeline::SimFlags flags;
     flags.scene_path = opt.scene;
     flags.motion = opt.motion;
     if (speed_given) {
@@ -102,13 +107,15 @@ io::RunData LoadServedRun(const ServeOptions& opt, const CommonOptions& common, 
     }
     flags.seed = opt.seed;
     flags.rig_path = opt.rig;
-    const SimSetup setup = ResolveSimSetup(flags);
+    pipeline::SimSetup setup;
+    WithFlagNames(kSimFlags, [&] { setup = pipeline::ResolveSimSetup(flags); });
     const core::Scene scene = io::LoadScene(setup.scene_path);
     const sim::World world(scene);
-    const core::Trajectory poses = RigTrajectory(setup, scene);
-    return SimulateRun(setup, scene, world, poses, core::ResolveThreads(common.threads), nullptr,
-                       false)
-        .run;
+    const core::Trajectory poses = pipeline::RigTrajectory(setup, scene);
+    pipeline::SimulateRunOptions options;
+    options.threads = common.threads;
+    options.truth = false;
+    return pipeline::SimulateRun(setup, scene, world, poses, options).run;
 #else
     (void)common;
     (void)speed_given;

@@ -10,13 +10,12 @@
 #include <string>
 
 #include "apps/casmap/commands.hpp"
+#include "apps/casmap/flag_names.hpp"
+#include "apps/casmap/progress_bar.hpp"
 #include "casmap/core/input_error.hpp"
-#include "casmap/core/parallel.hpp"
-#include "casmap/core/progress.hpp"
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/run_file.hpp"
 #include "casmap/io/scene_file.hpp"
-#include "casmap/pipeline/map_run.hpp"
 #include "casmap/pipeline/sim_pipeline.hpp"
 
 namespace casmap::app {
@@ -24,10 +23,13 @@ namespace {
 namespace fs = std::filesystem;
 
 struct SimulateOptions {
-    SimFlags flags;
+    pipeline::SimFlags flags;
     double speed_m_s = 0.0;
     std::string out;
 };
+
+const FlagNames kFlags = {
+    {"motion", "--motion"}, {"speed_m_s", "--speed"}, {"pose_error", "--pose-error"}};
 
 void CheckOutput(const std::string& out) {
     const fs::path path(out);
@@ -42,16 +44,18 @@ void RunSimulate(SimulateOptions& opt, const CommonOptions& common, bool speed_g
         opt.flags.speed_m_s = opt.speed_m_s;
     }
     CheckOutput(opt.out);  // fail before minutes of work, not after
-    const SimSetup setup = ResolveSimSetup(opt.flags);
+    pipeline::SimSetup setup;
+    WithFlagNames(kFlags, [&] { setup = pipeline::ResolveSimSetup(opt.flags); });
     const core::Scene scene = io::LoadScene(setup.scene_path);
     const sim::World world(scene);
-    const core::Trajectory poses = RigTrajectory(setup, scene);
-    const int threads = core::ResolveThreads(common.threads);
-    SimulatedRun result;
+    const core::Trajectory poses = pipeline::RigTrajectory(setup, scene);
+    pipeline::SimulatedRun result;
     {
-        core::Progress progress("simulate", ScanCount(setup, poses));
-        result = SimulateRun(setup, scene, world, poses, threads, &progress);
-        progress.Finish();
+        ProgressBar bar("simulate");
+        pipeline::SimulateRunOptions options;
+        options.threads = common.threads;
+        options.progress = bar.Fn();
+        result = pipeline::SimulateRun(setup, scene, world, poses, options);
     }
     io::WriteRunFile(opt.out, result.run);
     io::WriteTextAtomically(opt.out + ".config.yaml", result.run.config_yaml);

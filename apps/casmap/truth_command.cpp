@@ -36,7 +36,7 @@ void RunTruth(const TruthOptions& opt, const CommonOptions& common) {
     if (!opt.png.empty() && std::filesystem::path(opt.png).extension() != ".png") {
         throw MakeInputError("command line", "--png", opt.png, "must end in .png");
     }
-    const core::GridGeometry grid = ParseGrid(opt.grid, "--grid");
+    const core::GridGeometry grid = pipeline::ParseGrid(opt.grid, "--grid");
     sim::GroundTruthOptions options;
     options.rule =
         opt.rule == "centre" ? sim::TruthRule::kCellCentre : sim::TruthRule::kHighestInCell;

@@ -1,0 +1,140 @@
+#include "casmap/pipeline/bench.hpp"
+
+#include <chrono>
+#include <set>
+
+#include "casmap/core/input_error.hpp"
+#include "casmap/core/parallel.hpp"
+#include "casmap/io/atomic_file.hpp"
+#include "casmap/pipeline/bench_runner.hpp"
+
+namespace casmap::pipeline {
+namespace {
+namespace fs = std::filesystem;
+
+std::string OnOff(bool on) { return on ? "on" : "off"; }
+
+}  // namespace
+
+std::vector<int> AllCourses() {
+    std::vector<int> all;
+    for (int c = 1; c <= 16; ++c) {
+        all.push_back(c);
+    }
+    return all;
+}
+
+const std::vector<std::string>& AllTests() {
+    static const std::vector<std::string> tests = {"T", "TR", "TP", "TRP"};
+    return tests;
+}
+
+void BenchOptions::Validate() const {
+    CheckCoursesAndTests(courses, tests);
+    (void)ResolveBenchSettings(courses_dir, rig_path, sensor_path, seed);
+    mapper::FilterParams check;
+    for (const std::string& assignment : filter_settings) {
+        check.SetAssignment(assignment);
+    }
+    check.Validate();
+}
+
+std::string FilterParamsYaml(const mapper::FilterParams& p) {
+    const mapper::CasParams& c = p.cas;
+    return "filters:\n  cas: {k: " + std::to_string(c.k) + ", a: " + std::to_string(c.a) +
+           ", cell_m: " + FormatNumber(c.cell_m) + ", speed_m_s: " + FormatNumber(c.speed_m_s) +
+           ", scan_period_s: " + FormatNumber(c.scan_period_s) +
+           ", A: " + FormatNumber(c.EffectiveA()) + ", G: " + FormatNumber(c.EffectiveG()) +
+           ", gs_mode: " + (c.gs_mode == mapper::GsMode::kSum ? "sum" : "variance") +
+           ", h_sum_min: " + FormatNumber(c.h_sum_min) + ", B: " + FormatNumber(c.B) +
+           ", normalise: " + (c.normalise == mapper::Normalise::kWindow ? "window" : "global") +
+           ", e_term: " + OnOff(c.e_term) + ", E: " + FormatNumber(c.E) +
+           ", wm_empty: " + (c.wm_empty == mapper::WmEmpty::kInclude ? "include" : "skip") +
+           "}\n  baseline: {window: " + std::to_string(p.baseline.window) + ", noise: " +
+           (p.baseline.noise ? FormatNumber(*p.baseline.noise) : "mean_local_variance") +
+           ", center_weight: " + std::to_string(p.baseline.center_weight) + "}\n";
+}
+
+BenchResult RunBench(const BenchOptions& options, const core::ProgressFn& progress) {
+    const auto start = std::chrono::steady_clock::now();
+    options.Validate();  // bad input fails before any work
+    const BenchSettings settings = ResolveBenchSettings(options.courses_dir, options.rig_path,
+                                                        options.sensor_path, options.seed);
+    const std::vector<int>& courses = options.courses;
+    const std::vector<std::string> tests = SortedTests(options.tests);
+    const int threads = core::ResolveThreads(options.threads);
+
+    // The table trajectories depend on the test only (the rig does not see the scene).
+    std::vector<SimSetup> setups(tests.size());
+    for (std::size_t t = 0; t < tests.size(); ++t) {
+        setups[t] = BenchSetup(settings, courses.front(), tests[t]);
+    }
+    std::vector<core::Trajectory> trajectories(tests.size());
+    std::vector<Course> loaded;
+    core::ParallelFor(tests.size() + 1, threads, [&](std::size_t i) {
+        if (i < tests.size()) {
+            trajectories[i] = RigTrajectory(setups[i], core::Scene{});
+        } else {
+            loaded = LoadCourses(settings, courses, setups.front().grid, 1);
+        }
+    });
+
+    const std::size_t n = courses.size() * tests.size();
+    BenchResult result;
+    result.runs.resize(n);
+    result.run_names.resize(n);
+    result.run_configs.resize(n);
+    if (options.sheets) {
+        result.sheets.resize(n);
+    }
+    core::ProgressCounter counter(progress, n);
+    core::ParallelFor(n, threads, [&](std::size_t k) {
+        const Course& course = loaded[k / tests.size()];
+        const std::size_t t = k % tests.size();
+        SimSetup setup = setups[t];
+        setup.scene_path = course.path;
+        const MappedBenchRun run = SimulateAndMap(setup, course, trajectories[t], 3);
+        const mapper::FilterParams params = RunFilterParams(run, options.filter_settings);
+        result.runs[k] =
+            ScoreRun(run, course, params, options.sheets ? &result.sheets[k] : nullptr);
+        result.run_names[k] = RunName(course.number, tests[t]);
+        result.run_configs[k] = run.config_yaml + FilterParamsYaml(params);
+        counter.Advance();
+    });
+    result.threads = threads;
+    result.elapsed_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+std::string WriteBenchOutputs(const fs::path& dir, const BenchResult& result) {
+    const auto start = std::chrono::steady_clock::now();
+    io::EnsureDirectory(dir);
+    io::EnsureDirectory(dir / "runs");
+    const bool sheets = !result.sheets.empty();
+    if (sheets) {
+        io::EnsureDirectory(dir / "sheets");
+    }
+    core::ParallelFor(result.runs.size(), result.threads, [&](std::size_t k) {
+        const std::string& name = result.run_names[k];
+        io::WriteTextAtomically(dir / "runs" / (name + ".yaml"), result.run_configs[k]);
+        if (sheets) {
+            const BenchRun& r = result.runs[k];
+            WriteSheet(dir / "sheets" / (name + ".png"), result.sheets[k],
+                       "obstacle course " + std::to_string(r.course) + ", test " + r.test +
+                           ": raw, ground truth and the five filters");
+        }
+    });
+    WritePiChart(dir / "pi_chart.png", result.runs);
+    io::WriteTextAtomically(dir / "table2.md", TableTwoMarkdown(result.runs));
+    io::WriteTextAtomically(dir / "poles.md", PolesMarkdown(result.runs));
+    io::WriteTextAtomically(dir / "pi_table.txt", PiTable(result.runs));
+    const double elapsed =
+        result.elapsed_s +
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::string json = BenchJson(result.runs, elapsed, result.threads);
+    io::WriteTextAtomically(dir / "bench.json", json);
+    return json;
+}
+
+}  // namespace casmap::pipeline

@@ -1,0 +1,64 @@
+#pragma once
+
+// The paper's benchmark as one library call: for each obstacle course x test, simulate the
+// table run, map it, run CAS and the four baselines and score them against the exact ground
+// truth (Eq. 11 PI, RMSE, surviving spikes, filled-cell error, Table II classes, poles kept).
+// Runs in parallel across courses and tests, one thread per run, so the figures do not depend
+// on the thread count. Never prints; progress through a callback.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "casmap/core/progress.hpp"
+#include "casmap/mapper/filter_params.hpp"
+#include "casmap/pipeline/benchmark_report.hpp"
+
+namespace casmap::pipeline {
+
+/// Courses 1..16 (the paper's Table I).
+[[nodiscard]] std::vector<int> AllCourses();
+/// T, TR, TP, TRP (the paper's benchmark tests).
+[[nodiscard]] const std::vector<std::string>& AllTests();
+
+struct BenchOptions {
+    std::vector<int> courses = AllCourses();      // each in 1..16, no repeats
+    std::vector<std::string> tests = AllTests();  // subset of T, TR, TP, TRP, no repeats
+    std::uint64_t seed = 1;                       // simulator seed of every run
+    std::string courses_dir;                      // course01.yaml ..; empty: CoursesDir()
+    std::string rig_path;                         // rig YAML; empty: the paper course
+    std::string sensor_path;                      // LMS 200 YAML; empty: built-in config
+    std::vector<std::string> filter_settings;     // NAME=VALUE (mapper::FilterParams::Set)
+    bool sheets = true;                           // keep the maps for the Fig. 7 sheets
+    int threads = 0;                              // 0 = all cores; results never depend on it
+
+    /// Throws InputError naming the field (courses, tests, courses_dir, rig_path,
+    /// sensor_path, filter_settings), the value and the rule.
+    void Validate() const;
+};
+
+struct BenchResult {
+    std::vector<BenchRun> runs;            // course-major, tests in T, TR, TP, TRP order
+    std::vector<std::string> run_names;    // "course04_T" per run
+    std::vector<std::string> run_configs;  // effective configuration YAML per run
+    std::vector<SheetMaps> sheets;         // per run when BenchOptions::sheets, else empty
+    double elapsed_s = 0.0;                // wall time of RunBench
+    int threads = 1;                       // threads used
+};
+
+/// Validates `options`, then simulates, maps and scores every course x test. `progress` is
+/// told once per finished run (total = courses x tests).
+[[nodiscard]] BenchResult RunBench(const BenchOptions& options,
+                                   const core::ProgressFn& progress = {});
+
+/// Writes DIR/bench.json, pi_chart.png (Fig. 8), table2.md (Table II), poles.md,
+/// pi_table.txt, runs/<run>.yaml and, when the result has them, sheets/<run>.png (Fig. 7).
+/// Creates DIR. bench.json's elapsed_s counts RunBench and the writing before it. Returns the
+/// bench.json text written.
+std::string WriteBenchOutputs(const std::filesystem::path& dir, const BenchResult& result);
+
+/// The `filters:` section of a run's effective configuration (every CAS and baseline value).
+[[nodiscard]] std::string FilterParamsYaml(const mapper::FilterParams& params);
+
+}  // namespace casmap::pipeline
