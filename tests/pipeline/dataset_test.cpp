@@ -141,7 +141,7 @@ TEST(Dataset, SampleCarriesLabelsMapsAndNegativeTruthAndReSimulatesAlone) {
     const core::Scene scene = io::LoadScene(setup.scene_path);
     const sim::World world(scene);
     const SimulatedRun again =
-        SimulateRun(setup, scene, world, RigTrajectory(setup, scene), 1, nullptr, false);
+        SimulateRun(setup, scene, world, RigTrajectory(setup, scene), {1, {}, false});
     ASSERT_EQ(again.run.scans.size(), run.scans.size());
     for (std::size_t k = 0; k < run.scans.size(); ++k) {
         for (std::size_t i = 0; i < run.scans[k].beams.size(); ++i) {
