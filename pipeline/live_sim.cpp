@@ -64,7 +64,10 @@ SimulatedLive MakeSimulatedSource(const SimFlags& flags, int threads, bool realt
     const core::Scene scene = io::LoadScene(live.setup.scene_path);
     const sim::World world(scene);
     const core::Trajectory true_poses = RigTrajectory(live.setup, scene);
-    SimulatedRun sim = SimulateRun(live.setup, scene, world, true_poses, threads, nullptr, false);
+    SimulateRunOptions options;
+    options.threads = threads;
+    options.truth = false;
+    SimulatedRun sim = SimulateRun(live.setup, scene, world, true_poses, options);
     live.poses = sim.run.poses;
     live.scans = std::make_unique<SimulatedSource>(
         std::move(sim.run), realtime, live.setup.scene_path + " (" + live.setup.motion_name + ")");

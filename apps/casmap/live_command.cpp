@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "apps/casmap/commands.hpp"
+#include "apps/casmap/flag_names.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
 #include "casmap/drivers/pose_stream.hpp"
@@ -91,8 +92,8 @@ void ParseWindow(const std::string& text, mapper::ActiveWindowConfig& w) {
     throw MakeInputError("command line", "--window", text, "R,C: two integers (rows, columns)");
 }
 
-std::string Json(const LiveResult& r) {
-    const LiveStatus& s = r.status;
+std::string Json(const pipeline::LiveResult& r) {
+    const pipeline::LiveStatus& s = r.status;
     char buf[1024];
     std::snprintf(
         buf, sizeof(buf),
@@ -113,7 +114,7 @@ std::string Json(const LiveResult& r) {
     return buf;
 }
 
-void StatusLine(const LiveStatus& s) {
+void StatusLine(const pipeline::LiveStatus& s) {
     std::fprintf(stderr,
                  "\rlive: %llu scans, %.1f scans/s, latency p99 %.2f ms, dropped %llu, "
                  "crc errors %llu, reconnects %llu   %s",
@@ -131,7 +132,7 @@ void RunLiveCommand(const LiveOptions& opt, const CommonOptions& common, bool sp
         throw MakeInputError("command line", "--device / --scene", "",
                              "give either --device PATH or --scene FILE --motion M");
     }
-    LiveConfig cfg;
+    pipeline::LiveConfig cfg;
     cfg.out_dir = opt.out;
     ParseWindow(opt.window, cfg.window);
     cfg.window.obstacle_cell_m = opt.obstacle_cell_m;
@@ -140,7 +141,7 @@ void RunLiveCommand(const LiveOptions& opt, const CommonOptions& common, bool sp
     cfg.max_scans = opt.scans;
     cfg.timeout_s = opt.timeout_s;
     cfg.pose_tolerance_s = opt.pose_tolerance_s;
-    std::unique_ptr<LiveScanSource> source;
+    std::unique_ptr<pipeline::LiveScanSource> source;
     std::unique_ptr<drivers::PoseStream> poses;
     if (from_device) {
         drivers::CheckLmsBaud(opt.baud, "--baud");
@@ -153,14 +154,14 @@ void RunLiveCommand(const LiveOptions& opt, const CommonOptions& common, bool sp
         } else {
             poses = std::make_unique<drivers::PoseSocket>(opt.poses_socket);
         }
-        source = MakeDeviceSource(opt.device, opt.baud, opt.timeout_s);
+        source = pipeline::MakeDeviceSource(opt.device, opt.baud, opt.timeout_s);
     } else {
 #ifdef CASMAP_WITH_SIM
         if (opt.scene.empty() || opt.motion.empty()) {
             throw MakeInputError("command line", "--scene / --motion", "",
                                  "--scene and --motion go together");
         }
-        SimFlags flags;
+        pipeline::SimFlags flags;
         flags.scene_path = opt.scene;
         flags.motion = opt.motion;
         if (speed_given) {
@@ -168,8 +169,11 @@ void RunLiveCommand(const LiveOptions& opt, const CommonOptions& common, bool sp
         }
         flags.seed = opt.seed;
         flags.rig_path = opt.rig;
-        SimulatedLive sim =
-            MakeSimulatedSource(flags, core::ResolveThreads(common.threads), opt.realtime);
+        pipeline::SimulatedLive sim;
+        WithFlagNames({{"motion", "--motion"}, {"speed_m_s", "--speed"}}, [&] {
+            sim = pipeline::MakeSimulatedSource(flags, core::ResolveThreads(common.threads),
+                                                opt.realtime);
+        });
         // The simulated map's grid origin, so live cells coincide with `casmap simulate`'s.
         cfg.window.origin_x_m = sim.setup.grid.x0_m;
         cfg.window.origin_y_m = sim.setup.grid.y0_m;
@@ -181,7 +185,7 @@ void RunLiveCommand(const LiveOptions& opt, const CommonOptions& common, bool sp
         // Eq. 8's v: the rig's cruise speed, as `casmap bench` and datasets use.
         cfg.window.cas.speed_m_s =
             sim.setup.vehicle ? sim.setup.vehicle_config.speed_m_s : sim.setup.table.speed_m_s;
-        poses = std::make_unique<TrajectoryPoseStream>(sim.poses);
+        poses = std::make_unique<pipeline::TrajectoryPoseStream>(sim.poses);
         source = std::move(sim.scans);
 #else
         (void)common;
@@ -205,11 +209,11 @@ void RunLiveCommand(const LiveOptions& opt, const CommonOptions& common, bool sp
     cfg.window.cell_m = params.cas.cell_m;
     const LiveSignals signals;
     const bool tty = ::isatty(STDERR_FILENO) != 0;
-    LiveStatusFn on_status;
+    pipeline::LiveStatusFn on_status;
     if (tty) {
         on_status = StatusLine;
     }
-    const LiveResult r = RunLive(cfg, *source, *poses, g_live_stop, on_status);
+    const pipeline::LiveResult r = pipeline::RunLive(cfg, *source, *poses, g_live_stop, on_status);
     std::printf("%s\n", Json(r).c_str());
     std::fflush(stdout);
     if (r.timed_out) {
