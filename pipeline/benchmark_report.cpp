@@ -5,10 +5,14 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <set>
 
 namespace casmap::pipeline {
 namespace {
+
+// Key order as written (nlohmann's ordered_json): bench.json keeps its documented order.
+using Json = nlohmann::ordered_json;
 
 // Table II of the paper (benchmark test T), courses 1-16: mixed, missing, untouched (%).
 constexpr std::array<double, 16> kPaperMixed = {17.8, 16.7, 17.6, 15.0, 15.9, 16.7, 16.2, 17.5,
@@ -44,81 +48,54 @@ const std::vector<std::string>& BenchFilterNames() {
 }
 
 std::string JsonNumber(double value) {
-    if (!std::isfinite(value)) {
-        return "null";
-    }
-    char buffer[64];
-    const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
-    return ec == std::errc() ? std::string(buffer, ptr) : std::string("null");
+    return Json(std::isfinite(value) ? Json(value) : Json(nullptr)).dump();
 }
 
-std::string JsonString(const std::string& text) {
-    std::string out = "\"";
-    for (const char c : text) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (static_cast<unsigned char>(c) < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof(buf), "\\u%04x", c);
-            out += buf;
-        } else {
-            out += c;
-        }
-    }
-    return out + "\"";
-}
+std::string JsonString(const std::string& text) { return Json(text).dump(); }
 
 namespace {
-std::string NameList(const std::vector<std::string>& names) {
-    std::string j = "[";
-    for (std::size_t i = 0; i < names.size(); ++i) {
-        j += (i ? ", " : "") + JsonString(names[i]);
-    }
-    return j + "]";
+Json ScoreJson(const FilterScore& f) {
+    return Json{
+        {"pi", f.pi}, {"rmse_m", f.rmse_m}, {"spikes", f.spikes}, {"fill_error_m", f.fill_error_m}};
 }
 
-std::string PolesJson(const BenchRun& r) {
-    std::string j = ",\n   \"poles\": " + NameList(r.poles) + ", \"poles_kept\": {";
-    bool first = true;
-    for (const auto& [map, kept] : r.poles_kept) {
-        j += (first ? "" : ", ") + JsonString(map) + ": " + NameList(kept);
-        first = false;
+Json SharesJson(const mapper::ClassShares& s) {
+    return Json{
+        {"mixed", s.removed_pct}, {"missing", s.filled_pct}, {"untouched", s.untouched_pct}};
+}
+
+/// One run of bench.json (issue 5's shape; NaN is written as null).
+Json RunJson(const BenchRun& r) {
+    Json filters = Json::object();
+    for (const std::string& name : BenchFilterNames()) {
+        filters[name] = ScoreJson(r.filters.at(name));
     }
-    return j + "}";
+    Json observed = SharesJson(r.cas_classes.observed);
+    observed["cells"] = r.cas_classes.observed.cells;
+    Json kept = Json::object();
+    for (const auto& [map, names] : r.poles_kept) {
+        kept[map] = names;
+    }
+    return Json{{"course", r.course},
+                {"test", r.test},
+                {"seed", r.seed},
+                {"scans", r.scans},
+                {"filters", filters},
+                {"cas_classes_pct", SharesJson(r.cas_classes.all)},
+                {"cas_processed_cells", r.cas_classes.all.cells},
+                {"cas_classes_observed_pct", observed},
+                {"raw", Json{{"rmse_m", r.raw_rmse_m}, {"spikes", r.raw_spikes}}},
+                {"poles", r.poles},
+                {"poles_kept", kept}};
 }
 }  // namespace
 
 std::string BenchJson(const std::vector<BenchRun>& runs, double elapsed_s, int threads) {
+    // One run per line: readable, diff-friendly, and the runs part is independent of the
+    // timing fields that follow it.
     std::string j = "{\"runs\": [";
     for (std::size_t i = 0; i < runs.size(); ++i) {
-        const BenchRun& r = runs[i];
-        j += i == 0 ? "\n  " : ",\n  ";
-        j += "{\"course\": " + std::to_string(r.course) + ", \"test\": " + JsonString(r.test) +
-             ", \"seed\": " + std::to_string(r.seed) + ", \"scans\": " + std::to_string(r.scans) +
-             ",\n   \"filters\": {";
-        bool first = true;
-        for (const std::string& name : BenchFilterNames()) {
-            const FilterScore& f = r.filters.at(name);
-            j += first ? "" : ", ";
-            first = false;
-            j += JsonString(name) + ": {\"pi\": " + JsonNumber(f.pi) +
-                 ", \"rmse_m\": " + JsonNumber(f.rmse_m) +
-                 ", \"spikes\": " + std::to_string(f.spikes) +
-                 ", \"fill_error_m\": " + JsonNumber(f.fill_error_m) + "}";
-        }
-        const mapper::ClassShares& a = r.cas_classes.all;
-        const mapper::ClassShares& o = r.cas_classes.observed;
-        j += "},\n   \"cas_classes_pct\": {\"mixed\": " + JsonNumber(a.removed_pct) +
-             ", \"missing\": " + JsonNumber(a.filled_pct) +
-             ", \"untouched\": " + JsonNumber(a.untouched_pct) + "}" +
-             ", \"cas_processed_cells\": " + std::to_string(a.cells) +
-             ",\n   \"cas_classes_observed_pct\": {\"mixed\": " + JsonNumber(o.removed_pct) +
-             ", \"missing\": " + JsonNumber(o.filled_pct) +
-             ", \"untouched\": " + JsonNumber(o.untouched_pct) +
-             ", \"cells\": " + std::to_string(o.cells) + "}" +
-             ",\n   \"raw\": {\"rmse_m\": " + JsonNumber(r.raw_rmse_m) +
-             ", \"spikes\": " + std::to_string(r.raw_spikes) + "}" + PolesJson(r) + "}";
+        j += (i == 0 ? "\n  " : ",\n  ") + RunJson(runs[i]).dump();
     }
     j += "\n], \"elapsed_s\": " + JsonNumber(elapsed_s) +
          ", \"threads\": " + std::to_string(threads) + "}\n";

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
@@ -12,41 +13,41 @@
 namespace casmap::pipeline {
 namespace {
 namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
 
+Json PointJson(const SweepOptions& opt, const SweepPoint& pt) {
+    Json params = Json::object();
+    for (std::size_t i = 0; i < opt.axes.size(); ++i) {
+        params[opt.axes[i].name] = pt.values[i];
+    }
+    return Json{{"params", params},
+                {"pi_mean", pt.pi.mean},
+                {"pi_std", pt.pi.std},
+                {"pi_min", pt.pi.min},
+                {"pi_max", pt.pi.max},
+                {"runs", pt.pi.runs},
+                {"cas_classes_pct_mean", Json{{"mixed", pt.mixed_pct},
+                                              {"missing", pt.missing_pct},
+                                              {"untouched", pt.untouched_pct}}}};
+}
+
+/// sweep.json: a header line, one point per line, the summary (NaN written as null).
 std::string SweepJsonWithElapsed(const SweepResult& result, double elapsed_s) {
     const SweepOptions& opt = result.options;
-    std::string j = "{\"parameters\": [";
-    for (std::size_t i = 0; i < opt.axes.size(); ++i) {
-        j += (i ? ", " : "") + JsonString(opt.axes[i].name);
+    Json names = Json::array();
+    for (const SweepAxis& axis : opt.axes) {
+        names.push_back(axis.name);
     }
-    j += "], \"fixed\": [";
-    for (std::size_t i = 0; i < opt.fixed.size(); ++i) {
-        j += (i ? ", " : "") + JsonString(opt.fixed[i]);
-    }
-    j += "], \"courses\": [";
-    for (std::size_t i = 0; i < opt.courses.size(); ++i) {
-        j += (i ? ", " : "") + std::to_string(opt.courses[i]);
-    }
-    j += "], \"tests\": [";
-    const std::vector<std::string> tests = SortedTests(opt.tests);
-    for (std::size_t i = 0; i < tests.size(); ++i) {
-        j += (i ? ", " : "") + JsonString(tests[i]);
-    }
-    j += "], \"seed\": " + std::to_string(opt.seed) + ",\n \"points\": [";
+    const Json head{{"parameters", names},
+                    {"fixed", opt.fixed},
+                    {"courses", opt.courses},
+                    {"tests", SortedTests(opt.tests)},
+                    {"seed", opt.seed}};
+    std::string j = head.dump();
+    j.pop_back();  // the closing brace: the points follow
+    j += ",\n \"points\": [";
     for (std::size_t p = 0; p < result.points.size(); ++p) {
-        const SweepPoint& pt = result.points[p];
-        j += p ? ",\n  " : "\n  ";
-        j += "{\"params\": {";
-        for (std::size_t i = 0; i < opt.axes.size(); ++i) {
-            j += (i ? ", " : "") + JsonString(opt.axes[i].name) + ": " + JsonNumber(pt.values[i]);
-        }
-        j += "}, \"pi_mean\": " + JsonNumber(pt.pi.mean) +
-             ", \"pi_std\": " + JsonNumber(pt.pi.std) + ", \"pi_min\": " + JsonNumber(pt.pi.min) +
-             ", \"pi_max\": " + JsonNumber(pt.pi.max) +
-             ", \"runs\": " + std::to_string(pt.pi.runs) +
-             ", \"cas_classes_pct_mean\": {\"mixed\": " + JsonNumber(pt.mixed_pct) +
-             ", \"missing\": " + JsonNumber(pt.missing_pct) +
-             ", \"untouched\": " + JsonNumber(pt.untouched_pct) + "}}";
+        j += (p ? ",\n  " : "\n  ") + PointJson(opt, result.points[p]).dump();
     }
     j += "\n], \"best_point\": " + std::to_string(result.best) +
          ", \"elapsed_s\": " + JsonNumber(elapsed_s) +
