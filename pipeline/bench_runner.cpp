@@ -10,6 +10,7 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/io/rig_config.hpp"
 #include "casmap/io/scene_file.hpp"
 #include "casmap/io/sensor_config.hpp"
@@ -23,18 +24,10 @@ namespace casmap::pipeline {
 namespace {
 namespace fs = std::filesystem;
 
-std::vector<std::string> Split(const std::string& text, char sep) {
-    std::vector<std::string> parts;
-    std::stringstream in(text);
-    for (std::string part; std::getline(in, part, sep);) {
-        parts.push_back(part);
-    }
-    return parts;
-}
-
 bool ParseInt(const std::string& s, int& v) {
-    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    return ec == std::errc() && ptr == s.data() + s.size() && !s.empty();
+    const std::optional<int> parsed = core::ParseWholeInt(s);
+    v = parsed.value_or(0);
+    return parsed.has_value();
 }
 
 /// RMSE against truth over the cells CAS filled inside `region` (NaN if none).
@@ -109,7 +102,7 @@ std::vector<int> ParseCourses(const std::string& text, const std::string& field)
     const std::string rule =
         "allowed: courses 1..16 as N, N-M or a comma list, e.g. 1-16 or 1,4,7-9";
     std::set<int> out;
-    for (const std::string& part : Split(text, ',')) {
+    for (const std::string& part : core::SplitList(text)) {
         const std::size_t dash = part.find('-');
         int lo = 0;
         int hi = 0;
@@ -133,7 +126,7 @@ std::vector<int> ParseCourses(const std::string& text, const std::string& field)
 std::vector<std::string> ParseTests(const std::string& text, const std::string& field) {
     static const std::vector<std::string> kAll = {"T", "TR", "TP", "TRP"};
     std::set<std::string> given;
-    for (const std::string& part : Split(text, ',')) {
+    for (const std::string& part : core::SplitList(text)) {
         if (std::find(kAll.begin(), kAll.end(), part) == kAll.end()) {
             throw MakeInputError("", field, part, "allowed: T, TR, TP, TRP (comma separated)");
         }

@@ -8,6 +8,7 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/lms200.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/io/image.hpp"
 
 namespace casmap::pipeline {
@@ -95,24 +96,12 @@ core::GridGeometry GridCoveringBeams(const std::vector<core::Scan>& scans,
 }
 
 core::GridGeometry ParseGrid(const std::string& text, const std::string& field) {
-    std::vector<std::string> parts;
-    std::stringstream in(text);
-    for (std::string part; std::getline(in, part, ',');) {
-        parts.push_back(part);
-    }
     const std::string rule = "expected X0,Y0,CELL_M,ROWS,COLS with CELL_M > 0, ROWS, COLS > 0";
-    if (parts.size() != 5) {
+    const std::optional<std::vector<double>> parsed = core::ParseNumberList(text, 5);
+    if (!parsed) {
         throw MakeInputError("", field, text, rule);
     }
-    double v[5] = {};
-    for (std::size_t i = 0; i < 5; ++i) {
-        const char* first = parts[i].data();
-        const char* last = first + parts[i].size();
-        const auto [ptr, ec] = std::from_chars(first, last, v[i]);
-        if (ec != std::errc() || ptr != last || !std::isfinite(v[i])) {
-            throw MakeInputError("", field, text, rule);
-        }
-    }
+    const std::vector<double>& v = *parsed;
     if (!(v[2] > 0.0) || v[3] < 1.0 || v[4] < 1.0 || v[3] != std::floor(v[3]) ||
         v[4] != std::floor(v[4]) || v[3] > 1e5 || v[4] > 1e5) {
         throw MakeInputError("", field, text, rule);

@@ -7,6 +7,7 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/io/rig_config.hpp"
 #include "casmap/io/sensor_config.hpp"
 #include "casmap/pipeline/map_run.hpp"
@@ -18,25 +19,19 @@ namespace casmap::pipeline {
 namespace {
 
 double ParseDouble(const std::string& text, const std::string& field, const std::string& value) {
-    double v = 0.0;
-    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v)) {
+    const std::optional<double> v = core::ParseFiniteDouble(text);
+    if (!v) {
         throw MakeInputError("", field, value, "must be a finite number");
     }
-    return v;
+    return *v;
 }
 
 Eigen::Vector3d ParseVector3(const std::string& text, const std::string& field) {
-    std::vector<std::string> parts;
-    std::stringstream in(text);
-    for (std::string part; std::getline(in, part, ',');) {
-        parts.push_back(part);
-    }
-    if (parts.size() != 3) {
+    const std::optional<std::vector<double>> v = core::ParseNumberList(text, 3);
+    if (!v) {
         throw MakeInputError("", field, text, "must be three numbers X,Y,Z");
     }
-    return {ParseDouble(parts[0], field, text), ParseDouble(parts[1], field, text),
-            ParseDouble(parts[2], field, text)};
+    return {(*v)[0], (*v)[1], (*v)[2]};
 }
 
 /// --pose-error NAME=VALUE: the fields of rig::PoseErrorConfig (vectors as X,Y,Z).

@@ -1,0 +1,27 @@
+#pragma once
+
+// The one comma-list parser of casmap: every "A,B,C" value (grids, poses, vectors, course and
+// test lists) is split and its numbers read here, so they all accept the same spellings.
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace casmap::core {
+
+/// "a,b,c" -> {"a", "b", "c"}; "" -> {}; an empty item stays empty ("a,,b" -> 3 items) except
+/// a trailing separator, which ends the list ("a,b," -> 2 items).
+[[nodiscard]] std::vector<std::string> SplitList(std::string_view text, char separator = ',');
+
+/// The whole of `text` as a finite double (std::from_chars: no spaces, no leading '+').
+[[nodiscard]] std::optional<double> ParseFiniteDouble(std::string_view text);
+
+/// The whole of `text` as an int (std::from_chars); nullopt when empty or not an integer.
+[[nodiscard]] std::optional<int> ParseWholeInt(std::string_view text);
+
+/// A comma list of exactly `count` finite numbers; nullopt otherwise (a trailing comma too).
+[[nodiscard]] std::optional<std::vector<double>> ParseNumberList(std::string_view text,
+                                                                 std::size_t count);
+
+}  // namespace casmap::core
