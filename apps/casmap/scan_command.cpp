@@ -5,18 +5,18 @@
 // --ideal: one centre ray per beam, exact distances, no footprint, noise or errors.
 // --sensor: the LMS 200 config file (config/lms200.yaml); --ideal, --range-mode and --units
 // override it when given.
-#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <numbers>
-#include <sstream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "apps/casmap/commands.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/pose.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/io/scene_file.hpp"
 #include "casmap/io/sensor_config.hpp"
 #include "casmap/sensor_models/lms200_model.hpp"
@@ -40,26 +40,14 @@ struct ScanOptions {
 
 /// "X,Y,Z,ROLL_DEG,PITCH_DEG,YAW_DEG" -> world_T_sensor; throws InputError naming --pose.
 core::Pose ParsePose(const std::string& text) {
-    const std::string rule = "must be six numbers X,Y,Z,ROLL_DEG,PITCH_DEG,YAW_DEG";
-    std::vector<double> v;
-    std::stringstream in(text);
-    std::string part;
-    while (std::getline(in, part, ',')) {
-        std::size_t used = 0;
-        try {
-            v.push_back(std::stod(part, &used));
-        } catch (const std::logic_error&) {
-            throw MakeInputError("command line", "--pose", text, rule);
-        }
-        if (used != part.size() || !std::isfinite(v.back())) {
-            throw MakeInputError("command line", "--pose", text, rule);
-        }
-    }
-    if (v.size() != 6 || (!text.empty() && text.back() == ',')) {
-        throw MakeInputError("command line", "--pose", text, rule);
+    const std::optional<std::vector<double>> v = core::ParseNumberList(text, 6);
+    if (!v) {
+        throw MakeInputError("command line", "--pose", text,
+                             "must be six numbers X,Y,Z,ROLL_DEG,PITCH_DEG,YAW_DEG");
     }
     constexpr double kDeg = std::numbers::pi / 180.0;
-    return core::PoseFromXyzRpy({v[0], v[1], v[2]}, {v[3] * kDeg, v[4] * kDeg, v[5] * kDeg});
+    const std::vector<double>& p = *v;
+    return core::PoseFromXyzRpy({p[0], p[1], p[2]}, {p[3] * kDeg, p[4] * kDeg, p[5] * kDeg});
 }
 
 sensor_models::Lms200Config MakeConfig(const ScanOptions& o) {
