@@ -76,42 +76,35 @@ void ObstacleMap::Register(double x_m, double y_m, float h_m, float c) {
     if (n < std::numeric_limits<std::uint16_t>::max()) {
         ++n;
     }
+    if (registered_ == 0) {
+        i0_ = i1_ = i;
+        j0_ = j1_ = j;
+    } else {
+        i0_ = std::min(i0_, i);
+        i1_ = std::max(i1_, i);
+        j0_ = std::min(j0_, j);
+        j1_ = std::max(j1_, j);
+    }
     ++registered_;
 }
 
-ObstacleRaster ObstacleMap::ToRaster() const {
-    if (tiles_.empty()) {
-        ObstacleRaster r;
-        r.grid.cell_m = cell_m_;
-        r.grid.x0_m = x0_m_;
-        r.grid.y0_m = y0_m_;
-        return r;
-    }
-    std::int64_t i0 = std::numeric_limits<std::int64_t>::max();
-    std::int64_t j0 = i0;
-    std::int64_t i1 = std::numeric_limits<std::int64_t>::min();
-    std::int64_t j1 = i1;
-    for (const auto& [key, tile] : tiles_) {
-        const std::int64_t ti = key >> 32;
-        const auto tj = static_cast<std::int64_t>(static_cast<std::int32_t>(key & 0xFFFFFFFFLL));
-        for (int a = 0; a < kTile; ++a) {
-            for (int b = 0; b < kTile; ++b) {
-                if (tile->n[a * kTile + b] != 0) {
-                    i0 = std::min(i0, ti * kTile + a);
-                    i1 = std::max(i1, ti * kTile + a);
-                    j0 = std::min(j0, tj * kTile + b);
-                    j1 = std::max(j1, tj * kTile + b);
-                }
-            }
-        }
-    }
+core::GridGeometry ObstacleMap::Bounds() const {
     core::GridGeometry g;
     g.cell_m = cell_m_;
-    g.x0_m = x0_m_ + static_cast<double>(i0) * cell_m_;
-    g.y0_m = y0_m_ + static_cast<double>(j0) * cell_m_;
-    g.rows = static_cast<int>(i1 - i0 + 1);
-    g.cols = static_cast<int>(j1 - j0 + 1);
-    return ToRaster(g);
+    g.x0_m = x0_m_ + static_cast<double>(i0_) * cell_m_;
+    g.y0_m = y0_m_ + static_cast<double>(j0_) * cell_m_;
+    g.rows = registered_ == 0 ? 0 : static_cast<int>(i1_ - i0_ + 1);
+    g.cols = registered_ == 0 ? 0 : static_cast<int>(j1_ - j0_ + 1);
+    return g;
+}
+
+ObstacleRaster ObstacleMap::ToRaster() const {
+    if (registered_ == 0) {
+        ObstacleRaster r;
+        r.grid = Bounds();
+        return r;
+    }
+    return ToRaster(Bounds());
 }
 
 ObstacleRaster ObstacleMap::ToRaster(const core::GridGeometry& grid) const {
@@ -122,20 +115,29 @@ ObstacleRaster ObstacleMap::ToRaster(const core::GridGeometry& grid) const {
     r.count = core::Raster<std::uint16_t>(grid.rows, grid.cols, 0);
     const auto i0 = static_cast<std::int64_t>(std::llround((grid.x0_m - x0_m_) / cell_m_));
     const auto j0 = static_cast<std::int64_t>(std::llround((grid.y0_m - y0_m_) / cell_m_));
-    for (int a = 0; a < grid.rows; ++a) {
-        for (int b = 0; b < grid.cols; ++b) {
-            const std::int64_t i = i0 + a;
-            const std::int64_t j = j0 + b;
-            const std::int64_t ti = FloorDiv(i, kTile);
-            const std::int64_t tj = FloorDiv(j, kTile);
+    // Tile by tile: one hash lookup per tile the grid overlaps.
+    for (std::int64_t ti = FloorDiv(i0, kTile); ti <= FloorDiv(i0 + grid.rows - 1, kTile); ++ti) {
+        for (std::int64_t tj = FloorDiv(j0, kTile); tj <= FloorDiv(j0 + grid.cols - 1, kTile);
+             ++tj) {
             const Tile* t = FindTile(ti, tj);
             if (t == nullptr) {
                 continue;
             }
-            const auto idx = static_cast<std::size_t>((i - ti * kTile) * kTile + (j - tj * kTile));
-            r.elevation.at(a, b) = t->h[idx];
-            r.certainty.at(a, b) = t->c[idx];
-            r.count.at(a, b) = t->n[idx];
+            const std::int64_t a_lo = std::max<std::int64_t>(ti * kTile, i0);
+            const std::int64_t a_hi = std::min<std::int64_t>(ti * kTile + kTile, i0 + grid.rows);
+            const std::int64_t b_lo = std::max<std::int64_t>(tj * kTile, j0);
+            const std::int64_t b_hi = std::min<std::int64_t>(tj * kTile + kTile, j0 + grid.cols);
+            for (std::int64_t i = a_lo; i < a_hi; ++i) {
+                for (std::int64_t j = b_lo; j < b_hi; ++j) {
+                    const auto idx =
+                        static_cast<std::size_t>((i - ti * kTile) * kTile + (j - tj * kTile));
+                    const auto row = static_cast<int>(i - i0);
+                    const auto col = static_cast<int>(j - j0);
+                    r.elevation.at(row, col) = t->h[idx];
+                    r.certainty.at(row, col) = t->c[idx];
+                    r.count.at(row, col) = t->n[idx];
+                }
+            }
         }
     }
     return r;

@@ -39,6 +39,8 @@ public:
 
     /// The smallest raster holding every registered cell (0 x 0 if none).
     [[nodiscard]] ObstacleRaster ToRaster() const;
+    /// The grid of ToRaster() without copying cells (kept up to date by Register).
+    [[nodiscard]] core::GridGeometry Bounds() const;
     /// A raster over exactly `grid` (its cell size must be this map's; origin on the lattice).
     [[nodiscard]] ObstacleRaster ToRaster(const core::GridGeometry& grid) const;
 
@@ -63,6 +65,7 @@ private:
     std::int64_t last_key_ = 0;
     Tile* last_tile_ = nullptr;  // the tile of the previous Register (rows stay in a few tiles)
     std::uint64_t registered_ = 0;
+    std::int64_t i0_ = 0, i1_ = -1, j0_ = 0, j1_ = -1;  // registered cell index bounds
 };
 
 /// The offline counterpart of the live registration: every non-border cell of a CAS-filtered

@@ -379,7 +379,7 @@ LiveResult RunLive(const LiveConfig& config,
 }
 
 std::string StatusJson(const LiveStatus& s, const mapper::ActiveWindow& window) {
-    const mapper::ObstacleRaster o = window.obstacles().ToRaster();
+    const core::GridGeometry o = window.obstacles().Bounds();
     char buf[2048];
     std::snprintf(
         buf, sizeof(buf),
@@ -402,8 +402,8 @@ std::string StatusJson(const LiveStatus& s, const mapper::ActiveWindow& window) 
         FormatNumber(window.config().cell_m).c_str(), window.heading_rad(),
         static_cast<long long>(window.first_row()), static_cast<long long>(window.first_col()),
         FormatNumber(window.config().origin_x_m).c_str(),
-        FormatNumber(window.config().origin_y_m).c_str(), o.grid.x0_m, o.grid.y0_m,
-        FormatNumber(o.grid.cell_m).c_str(), o.grid.rows, o.grid.cols);
+        FormatNumber(window.config().origin_y_m).c_str(), o.x0_m, o.y0_m,
+        FormatNumber(o.cell_m).c_str(), o.rows, o.cols);
     return buf;
 }
 

@@ -263,6 +263,12 @@ TEST(ObstacleMap, KeepsTheHighestHeightWithItsCertainty) {
     EXPECT_EQ(r.count.at(1, 0), 4);
     EXPECT_EQ(r.count.at(0, 2), 1);
     EXPECT_EQ(r.count.at(0, 0), 0);
+    EXPECT_EQ(m.Bounds(), r.grid);
+    // A raster over any grid on the lattice, here one reaching across tile borders.
+    const ObstacleRaster wide = m.ToRaster(core::GridGeometry{-10.0, -10.0, 0.1, 200, 200});
+    EXPECT_EQ(wide.elevation.at(100, 100), 0.5F);
+    EXPECT_EQ(wide.count.at(99, 102), 1);
+    EXPECT_EQ(ObstacleMap(0.1).Bounds().rows, 0);
 }
 
 }  // namespace
