@@ -45,8 +45,10 @@ double JsonNumber(const std::string& text, const std::string& key) {
     return std::stod(text.substr(at + key.size() + 4));
 }
 
-/// A drive at 1 m/s (x = -0.5 + t), the scanner 0.5 m up and 40 deg down over a floor with a block
-/// (x 1.5..2.5, y -0.3..0.3, 0.2 m high); exact ranges per beam time, mm values.
+/// A drive at 0.25 m/s (x = 0.9 + t / 4: dense enough on the block top that CAS keeps it even
+/// when a loaded machine makes serve skip sweeps), the scanner 0.5 m up and 40 deg down over a
+/// floor with a block (x 1.5..2.5, y -0.3..0.3, 0.2 m high); exact ranges per beam time, in
+/// mm values.
 io::RunData BlockRun(int count) {
     io::RunData run;
     run.format = core::Lms200Format{};
@@ -54,7 +56,8 @@ io::RunData BlockRun(int count) {
     // Poses from 0.5 s before the first scan to 0.5 s after the last.
     for (int i = -500; i <= count * 1000 / 75 + 500; ++i) {
         const double t = i * 0.001;
-        poses.push_back({t, core::PoseFromXyzRpy({-0.5 + t, 0.0, 0.5}, {0.0, 40 * kDeg, 0.0})});
+        poses.push_back(
+            {t, core::PoseFromXyzRpy({0.9 + 0.25 * t, 0.0, 0.5}, {0.0, 40 * kDeg, 0.0})});
     }
     run.poses = core::Trajectory(poses);
     for (int k = 0; k < count; ++k) {
@@ -174,7 +177,7 @@ TEST_F(LiveCommand, MapsTheScansOfCasmapServe) {
     EXPECT_EQ(JsonNumber(r.output, "dropped"), 0);
     // No crc_errors check: a pty on a loaded machine occasionally loses bytes even without
     // injected faults (the counter is what tells).
-    EXPECT_GT(JsonNumber(r.output, "rows_filtered"), 60) << r.output;  // 250 scans: ~130 rows
+    EXPECT_GT(JsonNumber(r.output, "rows_filtered"), 20) << r.output;  // 250 scans: ~33 rows
     ExpectOutputs(out(), 250);
     // The block is in the obstacle map: its top (0.2 m) is the highest registered height.
     const core::MapF h = io::ReadMapTiff(out() / "obstacle_elevation.tiff");
