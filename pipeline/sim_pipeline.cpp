@@ -193,7 +193,15 @@ std::size_t ScanCountFor(const sensor_models::Lms200Model& model,
     if (span < 0.0) {
         return 0;
     }
-    return static_cast<std::size_t>(std::floor(span / model.ScanPeriodS())) + 1;
+    auto count = static_cast<std::size_t>(std::floor(span / model.ScanPeriodS())) + 1;
+    // The quotient may round up across an integer: keep the last scan's latest beam within the
+    // trajectory with the very expression sim::CastScan checks.
+    const double start = trajectory.StartTime();
+    while (count > 0 && !(start + static_cast<double>(count - 1) * model.ScanPeriodS() + latest <=
+                          trajectory.EndTime())) {
+        --count;
+    }
+    return count;
 }
 }  // namespace
 

@@ -169,6 +169,15 @@ TEST(Dataset, AFailingSampleIsRecordedAndTheRunGoesOn) {
     EXPECT_TRUE(fs::exists(dir / "card.md"));
 }
 
+// Sample 106 of the default spec: 556 scans of 1/75 s end exactly at its 7.42 s trajectory, and
+// the scan count's quotient rounded up to one scan too many.
+TEST(Dataset, TheLastScanEndingOnTheTrajectoryEndIsKeptOrDropped) {
+    const scenegen::DatasetSpec spec =
+        io::LoadDatasetSpec(std::string(CASMAP_SOURCE_DIR) + "/config/datasets/default.yaml");
+    const SampleRecord r = GenerateSample(spec, Context(TempDir("rounding")), 106);
+    EXPECT_TRUE(r.ok) << r.line;
+}
+
 TEST(DatasetSpecFile, UnknownKeyAndBadRangeNameFileAndField) {
     const fs::path dir = TempDir("spec");
     const fs::path path = dir / "spec.yaml";
