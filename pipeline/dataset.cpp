@@ -8,6 +8,7 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/dataset_spec_file.hpp"
+#include "casmap/pipeline/data_dir.hpp"
 #include "casmap/pipeline/dataset_card.hpp"
 #include "casmap/pipeline/sha256.hpp"
 #include "casmap/scenegen/random.hpp"
@@ -77,9 +78,9 @@ std::vector<fs::path> FindRockMeshes(const std::string& dir_flag) {
         candidates.emplace_back(dir_flag);
     } else {
         candidates.emplace_back("scenes/meshes");
-#ifdef CASMAP_MESHES_DIR
-        candidates.emplace_back(CASMAP_MESHES_DIR);
-#endif
+        if (const std::optional<fs::path> data = FindDataDir()) {
+            candidates.push_back(*data / "scenes" / "meshes");  // installed or source tree
+        }
     }
     for (const fs::path& dir : candidates) {
         std::error_code ec;
@@ -95,7 +96,7 @@ std::vector<fs::path> FindRockMeshes(const std::string& dir_flag) {
             return rocks;
         }
     }
-    throw MakeInputError(dir_flag.empty() ? "scenes/meshes" : dir_flag, "--meshes", dir_flag,
+    throw MakeInputError(dir_flag.empty() ? "scenes/meshes" : dir_flag, "meshes_dir", dir_flag,
                          "no rock_*.ply meshes found");
 }
 

@@ -28,7 +28,8 @@ struct DatasetContext {
 };
 
 /// The rock meshes shipped with casmap: `dir`/rock_*.ply sorted by name, `dir` = the flag if
-/// given, else ./scenes/meshes, else the source tree's. InputError if none is found.
+/// given, else ./scenes/meshes, else DataDir()/scenes/meshes. InputError naming "meshes_dir"
+/// if none is found.
 [[nodiscard]] std::vector<std::filesystem::path> FindRockMeshes(const std::string& dir_flag);
 
 /// What one sample came to. `line` is its manifest line (JSON, no newline).

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "apps/casmap/commands.hpp"
+#include "apps/casmap/flag_names.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
 #include "casmap/io/atomic_file.hpp"
@@ -78,7 +79,8 @@ void RunDatasetCommand(const DatasetFlags& flags, const CommonOptions& common, b
     options.progress = DrawProgress;
     pipeline::DatasetContext context;
     context.out_dir = flags.out;
-    context.rock_meshes = pipeline::FindRockMeshes(flags.meshes);
+    WithFlagNames({{"meshes_dir", "--meshes"}},
+                  [&] { context.rock_meshes = pipeline::FindRockMeshes(flags.meshes); });
     const pipeline::DistributedSession session;  // MPI when started by mpirun/srun, else one rank
     if (session.rank() == 0) {
         io::EnsureDirectory(context.out_dir);
