@@ -1,12 +1,16 @@
 #include "casmap/pipeline/bench.hpp"
 
 #include <chrono>
+#include <numeric>
 #include <set>
+#include <stdexcept>
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
+#include "casmap/pipeline/bench_wire.hpp"
+#include "casmap/pipeline/distributed.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -88,19 +92,48 @@ BenchResult RunBench(const BenchOptions& options, const core::ProgressFn& progre
         result.sheets.resize(n);
     }
     core::ProgressCounter counter(progress, n);
-    core::ParallelFor(n, threads, [&](std::size_t k) {
-        const Course& course = loaded[k / tests.size()];
-        const std::size_t t = k % tests.size();
-        SimSetup setup = setups[t];
-        setup.scene_path = course.path;
-        const MappedBenchRun run = SimulateAndMap(setup, course, trajectories[t], 3);
-        const mapper::FilterParams params = RunFilterParams(run, options.filter_settings);
-        result.runs[k] =
-            ScoreRun(run, course, params, options.sheets ? &result.sheets[k] : nullptr);
-        result.run_names[k] = RunName(course.number, tests[t]);
-        result.run_configs[k] = run.config_yaml + FilterParamsYaml(params);
+    std::vector<std::size_t> items(n);
+    std::iota(items.begin(), items.end(), std::size_t{0});
+    const DistributedSession local = DistributedSession::Local();
+    const DistributedSession& session = options.session != nullptr ? *options.session : local;
+    // A run travels as 'R' + EncodeBenchRun, or 'E' + the error that stopped it.
+    const auto work = [&](std::size_t k) -> std::string {
+        try {
+            const Course& course = loaded[k / tests.size()];
+            const std::size_t t = k % tests.size();
+            SimSetup setup = setups[t];
+            setup.scene_path = course.path;
+            const MappedBenchRun run = SimulateAndMap(setup, course, trajectories[t], 3);
+            const mapper::FilterParams params = RunFilterParams(run, options.filter_settings);
+            BenchRunRecord record;
+            record.has_sheet = options.sheets;
+            record.run = ScoreRun(run, course, params, options.sheets ? &record.sheet : nullptr);
+            record.name = RunName(course.number, tests[t]);
+            record.config_yaml = run.config_yaml + FilterParamsYaml(params);
+            return "R" + EncodeBenchRun(record);
+        } catch (const std::exception& e) {
+            return std::string("E") + e.what();
+        }
+    };
+    std::string error;
+    const auto done = [&](std::size_t k, const std::string& payload) {
+        if (payload.front() == 'E') {
+            error = error.empty() ? payload.substr(1) : error;
+            return;
+        }
+        BenchRunRecord record = DecodeBenchRun(payload.substr(1));
+        result.runs[k] = std::move(record.run);
+        result.run_names[k] = std::move(record.name);
+        result.run_configs[k] = std::move(record.config_yaml);
+        if (options.sheets) {
+            result.sheets[k] = std::move(record.sheet);
+        }
         counter.Advance();
-    });
+    };
+    (void)DistributeWork(session, items, threads, work, done);
+    if (!error.empty()) {
+        throw std::runtime_error(error);
+    }
     result.threads = threads;
     result.elapsed_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -17,6 +17,8 @@
 
 namespace casmap::pipeline {
 
+class DistributedSession;  // distributed.hpp
+
 /// Courses 1..16 (the paper's Table I).
 [[nodiscard]] std::vector<int> AllCourses();
 /// T, TR, TP, TRP (the paper's benchmark tests).
@@ -32,6 +34,9 @@ struct BenchOptions {
     std::vector<std::string> filter_settings;     // NAME=VALUE (mapper::FilterParams::Set)
     bool sheets = true;                           // keep the maps for the Fig. 7 sheets
     int threads = 0;                              // 0 = all cores; results never depend on it
+    /// MPI ranks to spread the runs over (distributed.hpp; rank 0 gets the result, other
+    /// ranks an empty one); null: local threads only. Results never depend on it.
+    const DistributedSession* session = nullptr;
 
     /// Throws InputError naming the field (courses, tests, courses_dir, rig_path,
     /// sensor_path, filter_settings), the value and the rule.

@@ -15,6 +15,7 @@
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/pipeline/bench.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
+#include "casmap/pipeline/distributed.hpp"
 
 namespace casmap::app {
 namespace {
@@ -44,18 +45,23 @@ void RunBench(BenchFlags& flags, const CommonOptions& common) {
         pipeline::CheckWritableFile(flags.json, "--json");
     }
     io::EnsureDirectory(flags.out);
+    const pipeline::DistributedSession session;  // MPI under mpirun/srun, else one rank
+    opt.session = &session;
     pipeline::BenchResult result;
     {
         ProgressBar bar("bench");
-        result = pipeline::RunBench(opt, bar.Fn());
+        result = pipeline::RunBench(opt, session.rank() == 0 ? bar.Fn() : core::ProgressFn{});
+    }
+    if (session.rank() != 0) {
+        return;  // rank 0 writes every output
     }
     const std::string json = pipeline::WriteBenchOutputs(flags.out, result);
     if (!flags.json.empty()) {
         io::WriteTextAtomically(flags.json, json);
     }
     std::fputs(pipeline::PiTable(result.runs).c_str(), stdout);
-    std::printf("%zu runs in %.1f s on %d threads -> %s\n", result.runs.size(), result.elapsed_s,
-                result.threads, flags.out.c_str());
+    std::printf("%zu runs in %.1f s on %d threads x %d rank(s) -> %s\n", result.runs.size(),
+                result.elapsed_s, result.threads, session.ranks(), flags.out.c_str());
 }
 
 }  // namespace
