@@ -323,8 +323,14 @@ CasScore ScoreCas(const MappedBenchRun& run,
     const mapper::FilterResult cas =
         mapper::RunFilter(mapper::FilterMethod::kCas, raw, run.mapped.certainty, params);
     const mapper::Region region = mapper::PaperRegion(raw.rows, raw.cols);
-    return CasScore{mapper::PerformanceIndex(cas.elevation, raw, course.truth, region),
-                    mapper::ClassPercentages(cas.classes, run.mapped.certainty)};
+    const std::vector<Pole> poles = Poles(course.scene, run.setup.grid);
+    CasScore score;
+    score.pi = mapper::PerformanceIndex(cas.elevation, raw, course.truth, region);
+    score.classes = mapper::ClassPercentages(cas.classes, run.mapped.certainty);
+    score.spikes = mapper::CountSpikes(cas.elevation, course.truth, region);
+    score.poles = poles.size();
+    score.poles_kept = KeptPoles(cas.elevation, poles).size();
+    return score;
 }
 
 BenchSettings ResolveBenchSettings(const std::string& courses_dir,

@@ -116,6 +116,9 @@ struct MappedBenchRun {
 struct CasScore {
     double pi = 0.0;
     mapper::ClassReport classes;
+    std::int64_t spikes = 0;     // surviving spikes over the paper's region (CountSpikes)
+    std::size_t poles = 0;       // poles of the course inside the grid
+    std::size_t poles_kept = 0;  // of those, kept by CAS (ScoreRun's rule)
 };
 [[nodiscard]] CasScore ScoreCas(const MappedBenchRun& run,
                                 const Course& course,

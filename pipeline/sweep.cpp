@@ -286,12 +286,15 @@ SweepResult RunSweep(const SweepOptions& options, const core::ProgressFn& progre
         point.values = points[p];
         std::vector<double> pi;
         double shares[3] = {0.0, 0.0, 0.0};
+        double spikes = 0.0;
         for (std::size_t r = 0; r < runs; ++r) {
             if (const std::optional<CasScore>& sc = scores[r][p]) {
                 pi.push_back(sc->pi);
                 shares[0] += sc->classes.all.removed_pct;
                 shares[1] += sc->classes.all.filled_pct;
                 shares[2] += sc->classes.all.untouched_pct;
+                spikes += static_cast<double>(sc->spikes);
+                point.runs_all_poles_kept += sc->poles_kept == sc->poles ? 1 : 0;
             }
         }
         point.pi = Summarise(pi);
@@ -299,6 +302,7 @@ SweepResult RunSweep(const SweepOptions& options, const core::ProgressFn& progre
         point.mixed_pct = shares[0] / n;
         point.missing_pct = shares[1] / n;
         point.untouched_pct = shares[2] / n;
+        point.spikes_mean = spikes / n;
         const SweepStats& best = result.points[result.best].pi;
         if (std::isfinite(point.pi.mean) &&
             (!std::isfinite(best.mean) || point.pi.mean < best.mean)) {

@@ -61,6 +61,8 @@ struct SweepPoint {
     double mixed_pct = 0.0;      // mean Table II shares of CAS over those runs
     double missing_pct = 0.0;
     double untouched_pct = 0.0;
+    double spikes_mean = 0.0;             // CAS's surviving spikes, mean over the runs
+    std::size_t runs_all_poles_kept = 0;  // runs in which CAS kept every pole of the course
 };
 
 struct SweepResult {

@@ -28,7 +28,9 @@ Json PointJson(const SweepOptions& opt, const SweepPoint& pt) {
                 {"runs", pt.pi.runs},
                 {"cas_classes_pct_mean", Json{{"mixed", pt.mixed_pct},
                                               {"missing", pt.missing_pct},
-                                              {"untouched", pt.untouched_pct}}}};
+                                              {"untouched", pt.untouched_pct}}},
+                {"spikes_mean", pt.spikes_mean},
+                {"runs_all_poles_kept", pt.runs_all_poles_kept}};
 }
 
 /// sweep.json: a header line, one point per line, the summary (NaN written as null).

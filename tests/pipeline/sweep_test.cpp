@@ -89,7 +89,19 @@ TEST(RunSweep, ScoresEveryPointOnceAndPicksTheBest) {
         EXPECT_EQ(p.pi.runs, 1U);
         EXPECT_TRUE(std::isfinite(p.pi.mean));
         EXPECT_LE(one.points[one.best].pi.mean, p.pi.mean);
+        EXPECT_GE(p.spikes_mean, 0.0);
+        EXPECT_LE(p.runs_all_poles_kept, 1U);
     }
+    // a = 3 maps like the bench (same CAS parameters): the same spikes as ScoreRun's CAS.
+    BenchOptions bench;
+    bench.courses = {4};
+    bench.tests = {"T"};
+    bench.sheets = false;
+    bench.filter_settings = {"A=6"};
+    const BenchRun run = RunBench(bench).runs.at(0);
+    EXPECT_EQ(one.points[1].spikes_mean, static_cast<double>(run.filters.at("cas").spikes));
+    EXPECT_EQ(one.points[1].runs_all_poles_kept,
+              run.poles_kept.at("cas").size() == run.poles.size() ? 1U : 0U);
     EXPECT_EQ(one.run_names, (std::vector<std::string>{"course04_T"}));
     options.threads = 2;
     SweepResult two = RunSweep(options);
