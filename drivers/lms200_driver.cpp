@@ -337,11 +337,11 @@ std::size_t Lms200Driver::ReadSome(double timeout_s) {
             wait_s, std::max(0.0, config_.idle_confirm_s - Seconds(Clock::now() - last_byte_)));
     }
     std::size_t n = 0;
-    bool hung_up = false;
+    std::optional<SerialError> hung_up;
     try {
         n = port_->Read(buffer_, wait_s);
-    } catch (const SerialError&) {
-        hung_up = true;  // the line went dead: a telegram completed before stands
+    } catch (const SerialError& e) {
+        hung_up = e;  // the line went dead: a telegram completed before stands
     }
     const double arrival_s = WallNowS();
     const TelegramParser::Callback cb = [this, arrival_s](ParserEvent e, const Telegram& t) {
@@ -367,7 +367,7 @@ std::size_t Lms200Driver::ReadSome(double timeout_s) {
     };
     if (hung_up) {
         parser_.Idle(cb);
-        throw SerialError(config_.device + ": the device hung up");
+        throw *hung_up;
     }
     if (n == 0) {
         const double quiet_s = Seconds(Clock::now() - last_byte_);
@@ -514,7 +514,12 @@ std::optional<core::Scan> Lms200Driver::NextScan(double timeout_s) {
         const double quiet_s = std::max({config_.quiet_timeout_s,
                                          2.0 * TransmissionTimeS(kMaxFrameBytes, port_->baud()),
                                          2.0 * TelegramPeriodS(info_.output, info_.variant)});
-        if (ready_.empty() && Seconds(Clock::now() - last_scan_) > quiet_s) {
+        // Bytes still coming (e.g. the backlog after this process stalled) get three times as
+        // long to yield a scan before the line counts as dead.
+        const double since_scan_s = Seconds(Clock::now() - last_scan_);
+        const bool line_quiet = Seconds(Clock::now() - last_byte_) > 0.5 * quiet_s;
+        if (ready_.empty() && since_scan_s > quiet_s &&
+            (line_quiet || since_scan_s > 3 * quiet_s)) {
             port_.reset();
             ++own_.reconnects;
         }
