@@ -163,6 +163,7 @@ private:
     [[nodiscard]] FrameExpectation Expectation() const;
     /// Stamps and queues one measured-value telegram's scan.
     void OnValues(const MeasuredValues& v, double arrival_s, std::size_t frame_bytes);
+    [[nodiscard]] bool MaybeAwaited(std::uint8_t command) const;
     /// Grid index from an 8-bit real-time index, nearest to what `latest_s` implies.
     [[nodiscard]] std::int64_t UnwrapIndex(std::uint8_t index, double latest_s) const;
     void RequireConnected(const char* what) const;

@@ -22,6 +22,14 @@ double WallNowS() {
 
 }  // namespace
 
+bool Lms200Driver::MaybeAwaited(std::uint8_t command) const {
+    // A damaged candidate that may have been the awaited reply (or whose command byte was
+    // lost) ends the try at once; a damaged stream telegram (e.g. 0xB0 while a 0x20 reply is
+    // awaited) does not: under heavy damage the stream would otherwise abort every try.
+    return awaited_cmd_ != 0 &&
+           (command == 0 || command == awaited_cmd_ || command == cmd::kNotAcknowledged);
+}
+
 std::size_t Lms200Driver::ReadSome(double timeout_s) {
     double wait_s = timeout_s;
     if (parser_.Pending()) {  // a complete telegram waits for the next byte or for idle
@@ -49,11 +57,11 @@ std::size_t Lms200Driver::ReadSome(double timeout_s) {
                 saw_nak_ = saw_nak_ || (parser_.InSync() && awaited_cmd_ != 0);
                 break;
             case ParserEvent::kBadCrc:
-                saw_bad_crc_ = true;
+                saw_bad_crc_ = saw_bad_crc_ || MaybeAwaited(parser_.last_rejected_command());
                 break;
             case ParserEvent::kBadFollower:
                 has_pending_arrival_ = false;
-                saw_bad_crc_ = true;
+                saw_bad_crc_ = saw_bad_crc_ || MaybeAwaited(parser_.last_rejected_command());
                 break;
         }
     };
@@ -67,13 +75,17 @@ std::size_t Lms200Driver::ReadSome(double timeout_s) {
             parser_.Idle(cb);  // the line went idle after the telegram: it stands
         }
         if (parser_.InFrame() && quiet_s >= config_.inter_byte_timeout_s) {
-            saw_bad_crc_ = true;  // a telegram stopped short: damaged
-            parser_.Timeout(cb);
+            parser_.Timeout(cb);  // a telegram stopped short: damaged
+            saw_bad_crc_ = saw_bad_crc_ || MaybeAwaited(parser_.last_rejected_command());
         }
         return 0;
     }
     last_byte_ = Clock::now();
+    const std::uint64_t bad_headers = parser_.counters().bad_headers;
     parser_.Feed(std::span(buffer_.data(), n), cb);
+    if (parser_.counters().bad_headers != bad_headers) {  // e.g. a reply that lost a LEN byte
+        saw_bad_crc_ = saw_bad_crc_ || MaybeAwaited(parser_.last_rejected_command());
+    }
     if (parser_.Pending() && !has_pending_arrival_) {
         pending_arrival_s_ = arrival_s;
         has_pending_arrival_ = true;

@@ -66,6 +66,7 @@ void TelegramParser::LoseSync() {
 }
 
 void TelegramParser::Abandon() {
+    last_rejected_command_ = frame_.size() >= 5 ? frame_[4] : 0;
     // Drop the STX; everything after it is parsed again before any newer byte.
     ++counters_.dropped_bytes;
     LoseSync();
@@ -82,6 +83,7 @@ void TelegramParser::Step(std::uint8_t byte, const Callback& callback) {
             Deliver(callback);  // then the byte is parsed below as usual
         } else {
             ++counters_.bad_followers;
+            last_rejected_command_ = frame_[4];
             callback(ParserEvent::kBadFollower, telegram_);
             frame_.push_back(byte);  // parsed again after the frame's bytes
             Abandon();
@@ -128,6 +130,7 @@ void TelegramParser::Step(std::uint8_t byte, const Callback& callback) {
         static_cast<std::uint16_t>(frame_[crc_at] | (frame_[crc_at + 1] << 8U));
     if (Crc16(std::span(frame_).first(crc_at)) != crc) {
         ++counters_.crc_errors;
+        last_rejected_command_ = frame_[4];
         callback(ParserEvent::kBadCrc, telegram_);
         Abandon();
         return;

@@ -75,6 +75,9 @@ public:
     [[nodiscard]] bool InFrame() const { return !frame_.empty() && !pending_; }
     /// True while a complete telegram with a good CRC waits for its follower.
     [[nodiscard]] bool Pending() const { return pending_; }
+    /// Command byte of the last rejected candidate (bad CRC, bad follower, timeout), 0 if it
+    /// was too short to have one: tells a damaged reply from a damaged stream telegram.
+    [[nodiscard]] std::uint8_t last_rejected_command() const { return last_rejected_command_; }
     /// False from a stray byte or abandoned candidate until the next good telegram (or Reset).
     [[nodiscard]] bool InSync() const { return !out_of_sync_; }
     /// Drops any partial frame without counting and starts in sync (after a port flush).
@@ -98,6 +101,7 @@ private:
     bool out_of_sync_ = false;
     bool check_follower_ = false;
     bool pending_ = false;
+    std::uint8_t last_rejected_command_ = 0;
     Telegram telegram_;
     ParserCounters counters_;
 };

@@ -338,3 +338,39 @@ TEST(Lms200Modes, CrcCollisionsFromTheVirtualScannerAreRejected) {
 
 }  // namespace
 }  // namespace casmap::drivers
+
+namespace casmap::drivers {
+namespace {
+
+// Issue #13 item 8: with half the telegrams damaged (one byte dropped from each), start-up
+// succeeds after retries and the scans that arrive intact are kept, none damaged.
+TEST(Lms200Modes, HalfTheTelegramsDroppedStillStartsAndStreams) {
+    Fixture f("drop50");
+    f.vc.faults.drop_rate = 0.5;
+    f.vc.faults.seed = 77;
+    f.Start();
+    Lms200Driver d(f.Driver());
+    const Clock::time_point start = Clock::now();
+    int attempts = 0;
+    for (;;) {
+        ++attempts;
+        try {
+            d.Connect();
+            break;
+        } catch (const SerialError& e) {
+            std::printf("attempt %d failed after %.2f s: %s\n", attempts, Since(start), e.what());
+            ASSERT_LT(Since(start), 30.0) << "never connected in " << attempts << " attempts";
+        }
+    }
+    const std::vector<core::Scan> scans = Read(d, 20, 20.0);
+    std::printf("50 %% drops: connected after %d attempt(s), %zu scans, crc errors %llu\n",
+                attempts, scans.size(), static_cast<unsigned long long>(d.counters().crc_errors));
+    EXPECT_EQ(scans.size(), 20U);
+    for (const core::Scan& s : scans) {
+        EXPECT_EQ(RawOf(s), Raw(s.beams[0].raw, Variant{}));
+    }
+    d.Close();
+}
+
+}  // namespace
+}  // namespace casmap::drivers
