@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -190,12 +191,18 @@ TEST(ServeRecord, AStalledScannerThreadCatchesUpWithoutLasting) {
     vc.link_path = LinkPath("stall");
     VirtualLms200 scanner(vc, source);
     SentLog log;
-    int stalls = 0;
+    // Stall after the 4th and the 13th telegram sent (whatever sweeps they carry: on a loaded
+    // machine the scanner may already have skipped one): 20 ms and 80 ms, within and beyond
+    // the 50 ms catch-up.
+    std::atomic<int> sent{0};
+    std::atomic<std::uint64_t> first_stall{0};
+    std::atomic<std::uint64_t> second_stall{0};
     scanner.SetScanObserver([&](const SentScan& s) {
         log.Record(s);
-        if (s.index == 3 || s.index == 12) {  // 20 ms and 80 ms: within and beyond catch-up
-            std::this_thread::sleep_for(std::chrono::milliseconds(s.index == 3 ? 20 : 80));
-            ++stalls;
+        const int n = ++sent;
+        if (n == 4 || n == 13) {
+            (n == 4 ? first_stall : second_stall) = s.index;
+            std::this_thread::sleep_for(std::chrono::milliseconds(n == 4 ? 20 : 80));
         }
     });
     scanner.Start();
@@ -206,15 +213,15 @@ TEST(ServeRecord, AStalledScannerThreadCatchesUpWithoutLasting) {
     driver.Connect();
     const Recorded r = Record(driver, 30, 1.0);
     ASSERT_EQ(r.scans.size(), 30U);
-    EXPECT_EQ(stalls, 2);
+    ASSERT_GT(second_stall.load(), first_stall.load());
     std::vector<double> between;  // after the 20 ms stall, before the 80 ms one
     std::vector<double> after;
     for (std::size_t i = 0; i < r.scans.size(); ++i) {
         const std::uint64_t index = r.scans[i].beams[0].raw;
         const double error_s = r.scans[i].stamp_s - log.Beam0(index);
-        if (index >= 7 && index <= 12) {
+        if (index >= first_stall + 4 && index <= second_stall) {
             between.push_back(error_s);
-        } else if (index >= 20) {
+        } else if (index >= second_stall + 8) {
             after.push_back(error_s);
         }
     }
