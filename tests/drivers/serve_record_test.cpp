@@ -316,7 +316,9 @@ TEST(ServeRecord, FaultsAreRejectedAndCountedAndTheDriverRecovers) {
     std::printf("bad followers %llu malformed %llu\n",
                 static_cast<unsigned long long>(c.bad_followers),
                 static_cast<unsigned long long>(c.malformed));
-    EXPECT_LE(lost, c.bad_followers);
+    // Also, at each disconnect the scanner waits at most 0.1 s for the client to read what is
+    // already on the line: a reader stalled longer (a loaded machine) loses that telegram.
+    EXPECT_LE(lost, c.bad_followers + st.disconnects);
     EXPECT_LE(c.bad_followers, st.garbage_faults + st.drop_faults);
     EXPECT_GT(st.crc_faults + st.drop_faults, 0U);
     EXPECT_GT(st.garbage_bytes, 0U);
