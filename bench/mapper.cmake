@@ -8,3 +8,8 @@ if(TARGET casmap::mapper)
     casmap_add_benchmark(active_window_bench
         SOURCES ${CMAKE_CURRENT_LIST_DIR}/active_window_bench.cpp DEPS casmap::mapper)
 endif()
+# Pre-filter precision/recall against simulated truth labels (reads run files: needs io).
+if(TARGET casmap::mapper AND TARGET casmap::io)
+    add_executable(prefilter_score ${CMAKE_CURRENT_LIST_DIR}/prefilter_score.cpp)
+    target_link_libraries(prefilter_score PRIVATE casmap::mapper casmap::io)
+endif()

@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "casmap/mapper/baseline_nan.hpp"
 #include "casmap/mapper/filters.hpp"
 
 namespace casmap::mapper {
@@ -64,6 +65,9 @@ void LocalMoments(const core::MapF& h, int window, cv::Mat& mean, cv::Mat& var) 
 }  // namespace
 
 double WienerNoise(const core::MapF& elevation, const BaselineParams& params) {
+    if (params.unknown == Unknown::kNaN) {
+        return detail::NanWienerNoise(elevation, params);
+    }
     if (params.noise) {
         return *params.noise;
     }
@@ -77,6 +81,9 @@ double WienerNoise(const core::MapF& elevation, const BaselineParams& params) {
 }
 
 core::MapF WienerFilter(const core::MapF& elevation, const BaselineParams& params) {
+    if (params.unknown == Unknown::kNaN) {
+        return detail::NanWiener(elevation, params);
+    }
     if (elevation.data.empty()) {
         return elevation;
     }
@@ -102,6 +109,9 @@ core::MapF WienerFilter(const core::MapF& elevation, const BaselineParams& param
 }
 
 core::MapF AverageFilter(const core::MapF& elevation, const BaselineParams& params) {
+    if (params.unknown == Unknown::kNaN) {
+        return detail::NanAverage(elevation, params);
+    }
     if (elevation.data.empty()) {
         return elevation;
     }
@@ -112,6 +122,9 @@ core::MapF AverageFilter(const core::MapF& elevation, const BaselineParams& para
 }
 
 core::MapF MedianFilter(const core::MapF& elevation, const BaselineParams& params) {
+    if (params.unknown == Unknown::kNaN) {
+        return detail::NanWeightedMedian(elevation, params.window, 1);
+    }
     if (elevation.data.empty()) {
         return elevation;
     }
@@ -125,6 +138,9 @@ core::MapF MedianFilter(const core::MapF& elevation, const BaselineParams& param
 }
 
 core::MapF CwmFilter(const core::MapF& elevation, const BaselineParams& params) {
+    if (params.unknown == Unknown::kNaN) {
+        return detail::NanWeightedMedian(elevation, params.window, params.center_weight);
+    }
     return WeightedCentreMedian(elevation, params.window, params.center_weight);
 }
 

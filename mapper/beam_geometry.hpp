@@ -9,10 +9,13 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include "casmap/core/scan.hpp"
 #include "casmap/core/trajectory.hpp"
+#include "casmap/mapper/beam_batch.hpp"
 #include "casmap/mapper/terrain_mapper.hpp"
 
 namespace casmap::mapper::detail {
@@ -22,60 +25,6 @@ namespace casmap::mapper::detail {
 inline double CosPitch(const Eigen::Matrix3d& r) {
     return std::max(std::sqrt(r(2, 1) * r(2, 1) + r(2, 2) * r(2, 2)), 1e-12);
 }
-
-// Walks a trajectory with mostly increasing query times, so the per-beam pose lookup costs a
-// few comparisons instead of a binary search. Position is interpolated linearly, orientation
-// by normalised linear interpolation of the quaternions (nlerp): between samples a few
-// milliseconds apart it differs from Trajectory::PoseAt's slerp by far less than 1e-7 rad, and
-// it needs no trigonometry (the mapper's budget is 100 ns per beam).
-class PoseCursor {
-public:
-    explicit PoseCursor(const core::Trajectory& trajectory) : samples_(trajectory.samples()) {}
-
-    bool At(double t, Eigen::Quaterniond& q, Eigen::Vector3d& o) {
-        if (samples_.empty() || !(t >= samples_.front().stamp_s) || t > samples_.back().stamp_s) {
-            return false;
-        }
-        if (samples_.size() == 1) {
-            q = samples_.front().world_T_sensor.rotation;
-            o = samples_.front().world_T_sensor.translation;
-            return true;
-        }
-        if (t < samples_[k_].stamp_s) {
-            k_ = 0;  // went backwards: restart (rare)
-        }
-        // The last sample at or before t (at most size - 2): a step or two normally, a binary
-        // search on the first query of a scan into a long trajectory.
-        if (k_ + 2 < samples_.size() && samples_[k_ + 1].stamp_s <= t) {
-            ++k_;
-            if (k_ + 2 < samples_.size() && samples_[k_ + 1].stamp_s <= t) {
-                const auto first = samples_.begin() + static_cast<std::ptrdiff_t>(k_ + 1);
-                const auto last = samples_.end() - 1;
-                const auto it = std::upper_bound(
-                    first, last, t,
-                    [](double x, const core::TimedPose& p) { return x < p.stamp_s; });
-                k_ = static_cast<std::size_t>(it - samples_.begin()) - 1;
-            }
-        }
-        const core::TimedPose& a = samples_[k_];
-        const core::TimedPose& b = samples_[k_ + 1];
-        const double u = (t - a.stamp_s) / (b.stamp_s - a.stamp_s);
-        o = a.world_T_sensor.translation +
-            u * (b.world_T_sensor.translation - a.world_T_sensor.translation);
-        const Eigen::Quaterniond& qa = a.world_T_sensor.rotation;
-        Eigen::Quaterniond qb = b.world_T_sensor.rotation;
-        if (qa.dot(qb) < 0.0) {
-            qb.coeffs() = -qb.coeffs();  // the shorter way round, as slerp takes
-        }
-        q.coeffs() = (1.0 - u) * qa.coeffs() + u * qb.coeffs();
-        q.coeffs() *= 1.0 / q.coeffs().norm();  // one division, not four
-        return true;
-    }
-
-private:
-    const std::vector<core::TimedPose>& samples_;
-    std::size_t k_ = 0;
-};
 
 // atan2(y, x) for the small angle changes between two poses (x > 0, |y| < 0.1 x) by its
 // series (error < 1e-9 rad); std::atan2 otherwise.
@@ -131,21 +80,27 @@ inline double DeltaZMaxCs(
 }
 
 /// Eq. 5 and Eq. 6 on one cell (h in m, c in counts) for a world height z with its
-/// Delta z_max and certainty increment a.
-inline void UpdateCell(float& h, float& c, double z, double dz_max_m, int a) {
+/// Delta z_max and certainty increment a. `nan_unknown`: an unknown cell holds NaN
+/// (Unknown::kNaN) and its first hit sets the height.
+inline void UpdateCell(
+    float& h, float& c, double z, double dz_max_m, int a, bool nan_unknown = false) {
     // Eq. 5, against h^t before Eq. 6 updates it; every first hit (c == 0) gets a.
-    if (c == 0.0F || std::abs(z - static_cast<double>(h)) <= std::abs(dz_max_m)) {
+    const bool first = c == 0.0F;
+    if (first || std::abs(z - static_cast<double>(h)) <= std::abs(dz_max_m)) {
         c += static_cast<float>(a);
     }
     // Eq. 6: keep the height of largest magnitude.
-    if (std::abs(z) > std::abs(static_cast<double>(h))) {
+    if (std::abs(z) > std::abs(static_cast<double>(h)) || (first && nan_unknown)) {
         h = static_cast<float>(z);
     }
 }
 
 /// Eq. 1-4 for every valid beam of `scan` with the pose at its own time:
-/// `point(p_world, dz_max_m)` is called per beam that has a pose; `stats` counts beams seen,
-/// not ok and without pose. `dirs` must be Update()d for the scan.
+/// `point(p_world, dz_max_m)` is called per beam that has a pose, in beam order; `stats`
+/// counts beams seen, not ok, rejected by `keep` (empty, or one label per beam, 0 = skip) and
+/// without pose. `dirs` must be Update()d for the scan. The per-beam math runs as one batch per
+/// scan (mapper/beam_batch.hpp: AVX2 lanes, the same bits on the scalar path), so the offline
+/// TerrainMapper and the live ActiveWindow get identical points.
 template <typename PointFn>
 void ForEachBeamPoint(const core::Scan& scan,
                       const core::Trajectory& world_T_sensor,
@@ -153,44 +108,22 @@ void ForEachBeamPoint(const core::Scan& scan,
                       double scan_period_s,
                       double delta_l_m,
                       MapperStats& stats,
-                      PointFn&& point) {
+                      PointFn&& point,
+                      std::span<const std::uint8_t> keep = {}) {
     const std::size_t n = scan.beams.size();
     stats.beams_seen += n;
     if (world_T_sensor.empty()) {
         stats.beams_no_pose += n;
         return;
     }
-    PoseCursor now(world_T_sensor);
-    PoseCursor before(world_T_sensor);
-    const double start_s = world_T_sensor.StartTime();
-    Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
-    Eigen::Quaterniond q0 = Eigen::Quaterniond::Identity();
-    Eigen::Vector3d o0 = Eigen::Vector3d::Zero();
-    SensorState state;
-    for (std::size_t i = 0; i < n; ++i) {
-        const core::Beam& beam = scan.beams[i];
-        if (beam.status != core::BeamStatus::kOk) {
-            ++stats.beams_not_ok;
-            continue;
-        }
-        const double t = scan.BeamTime(i);
-        if (!now.At(t, q, state.origin_m)) {
-            ++stats.beams_no_pose;
-            continue;
-        }
-        // The previous measurement was one scan period earlier; before the trajectory
-        // starts, the motion since its start stands in (zero at the very first pose).
-        before.At(std::max(t - scan_period_s, start_s), q0, o0);
-        state.world_R_sensor = q.toRotationMatrix();
-        state.motion.displacement_m = state.origin_m - o0;
-        AngleChanges(ZRow(q0), state.world_R_sensor.row(2).transpose(), state.motion);
-        const double ca = dirs.cos[i];
-        const double sa = dirs.sin[i];
-        const double range_m = static_cast<double>(beam.range_m);
-        const Eigen::Matrix3d& r = state.world_R_sensor;
-        const Eigen::Vector3d p_world =
-            r.col(0) * (range_m * ca) + r.col(1) * (range_m * sa) + state.origin_m;
-        point(p_world, DeltaZMaxCs(state, ca, sa, range_m, delta_l_m));
+    thread_local BeamBatch batch;  // per-thread scratch, reused from scan to scan
+    const FillCounts counts = FillBatch(scan, world_T_sensor, dirs, scan_period_s, keep, batch);
+    stats.beams_not_ok += counts.not_ok;
+    stats.beams_rejected += counts.rejected;
+    stats.beams_no_pose += counts.no_pose;
+    ComputeBatch(delta_l_m, batch);
+    for (std::size_t j = 0; j < batch.size; ++j) {
+        point(Eigen::Vector3d(batch.x[j], batch.y[j], batch.z[j]), batch.dz_max[j]);
     }
 }
 

@@ -11,10 +11,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <span>
 #include <utility>
 #include <vector>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/mapper/cas_variants.hpp"
 #include "casmap/mapper/filters.hpp"
 #include "casmap/mapper/skeleton_median.hpp"
 
@@ -407,6 +409,10 @@ void CasFilterInto(const core::MapF& elevation,
                                  std::to_string(elevation.rows) + "x" +
                                  std::to_string(elevation.cols));
     }
+    if (p.unknown != Unknown::kZero || p.ground != Ground::kZero || p.support != Support::kOff) {
+        detail::CasVariantInto(elevation, certainty, p, out);  // the wave-2 forms
+        return;
+    }
     const int k = p.k;
     ResetOutput(elevation, k, out);
     if (elevation.rows < 2 * k + 1 || elevation.cols < 2 * k + 1) {
@@ -420,7 +426,9 @@ void CasFilterInto(const core::MapF& elevation,
     thread_local std::vector<std::size_t> fills;
     abs_h.resize(elevation.data.size());
     AbsInto(elevation.data.data(), abs_h.size(), abs_h.data());
-    fills.resize(elevation.data.size());
+    if (fills.size() < elevation.data.size()) {
+        fills.resize(elevation.data.size());  // grown once, never shrunk: no zeroing per call
+    }
     std::size_t n_fills = 0;
     const Thresholds t = MakeThresholds(p, abs_h, certainty);
     const bool general = p.gs_mode == GsMode::kVariance || p.e_term;
@@ -454,9 +462,9 @@ void CasFilterInto(const core::MapF& elevation,
         }
         n_fills = AppendFills(cls, row_off, first, last, fills, n_fills);
     }
-    fills.resize(n_fills);
     // The weighted median reads the unfiltered map, so filling after the loop changes nothing.
-    SkeletonMedian(elevation.data.data(), c, elevation.cols, k, p.wm_empty, fills, y);
+    SkeletonMedian(elevation.data.data(), c, elevation.cols, k, p.wm_empty,
+                   std::span<const std::size_t>(fills.data(), n_fills), y);
 }
 
 FilterResult CasFilter(const core::MapF& elevation,

@@ -103,6 +103,30 @@ const std::map<std::string, Setter, std::less<>>& Setters() {
              p.cas.wm_empty = ParseChoice<WmEmpty>(
                  n, v, {{"include", WmEmpty::kInclude}, {"skip", WmEmpty::kSkip}});
          }},
+        {"unknown",
+         [](FilterParams& p, auto n, auto v) {
+             p.cas.unknown =
+                 ParseChoice<Unknown>(n, v, {{"zero", Unknown::kZero}, {"nan", Unknown::kNaN}});
+             p.baseline.unknown = p.cas.unknown;
+         }},
+        {"ground",
+         [](FilterParams& p, auto n, auto v) {
+             p.cas.ground =
+                 ParseChoice<Ground>(n, v, {{"zero", Ground::kZero}, {"local", Ground::kLocal}});
+         }},
+        {"ground_k",
+         [](FilterParams& p, auto n, auto v) { p.cas.ground_k = ParseInt(n, v, 1, 15); }},
+        {"ground_quantile", [](FilterParams& p, auto n,
+                               auto v) { p.cas.ground_quantile = ParseRange(n, v, 0, 1, false); }},
+        {"support",
+         [](FilterParams& p, auto n, auto v) {
+             p.cas.support =
+                 ParseChoice<Support>(n, v, {{"off", Support::kOff}, {"height", Support::kHeight}});
+         }},
+        {"support_tol_m", [](FilterParams& p, auto n,
+                             auto v) { p.cas.support_tol_m = ParseRange(n, v, 0, kInf, true); }},
+        {"support_min",
+         [](FilterParams& p, auto n, auto v) { p.cas.support_min = ParseInt(n, v, 1, 48); }},
         {"window",
          [](FilterParams& p, auto n, auto v) {
              const int w = ParseInt(n, v, 3, 15);
@@ -133,7 +157,13 @@ FilterMethod ParseFilterMethod(std::string_view name, const std::string& field) 
             return m;
         }
     }
-    throw MakeInputError("", field, std::string(name), "allowed: cas|wiener|average|median|cwm");
+    for (const FilterMethod m : AllFilterMethodsWithVariants()) {
+        if (name == ToString(m)) {
+            return m;
+        }
+    }
+    throw MakeInputError("", field, std::string(name),
+                         "allowed: cas|wiener|average|median|cwm|cas_terrain|cas_trail");
 }
 
 std::string_view ToString(FilterMethod method) {
@@ -148,6 +178,10 @@ std::string_view ToString(FilterMethod method) {
             return "median";
         case FilterMethod::kCwm:
             return "cwm";
+        case FilterMethod::kCasTerrain:
+            return "cas_terrain";
+        case FilterMethod::kCasTrail:
+            return "cas_trail";
     }
     return "?";
 }
@@ -156,6 +190,14 @@ const std::vector<FilterMethod>& AllFilterMethods() {
     static const std::vector<FilterMethod> all = {FilterMethod::kCas, FilterMethod::kWiener,
                                                   FilterMethod::kAverage, FilterMethod::kMedian,
                                                   FilterMethod::kCwm};
+    return all;
+}
+
+const std::vector<FilterMethod>& AllFilterMethodsWithVariants() {
+    static const std::vector<FilterMethod> all = {FilterMethod::kCas,     FilterMethod::kWiener,
+                                                  FilterMethod::kAverage, FilterMethod::kMedian,
+                                                  FilterMethod::kCwm,     FilterMethod::kCasTerrain,
+                                                  FilterMethod::kCasTrail};
     return all;
 }
 
@@ -212,6 +254,14 @@ void FilterParams::Validate() const {
     check(cas.h_sum_min >= 0, "h_sum_min", cas.h_sum_min, "allowed: >= 0");
     check(cas.B >= 0, "B", cas.B, "allowed: >= 0");
     check(cas.E >= 0, "E", cas.E, "allowed: >= 0");
+    check(cas.ground_k >= 1 && cas.ground_k <= 15, "ground_k", cas.ground_k,
+          "allowed: integer 1..15");
+    check(cas.ground_quantile >= 0 && cas.ground_quantile <= 1, "ground_quantile",
+          cas.ground_quantile, "allowed: 0..1");
+    check(cas.support_tol_m > 0 && std::isfinite(cas.support_tol_m), "support_tol_m",
+          cas.support_tol_m, "allowed: > 0");
+    check(cas.support_min >= 1 && cas.support_min <= 48, "support_min", cas.support_min,
+          "allowed: integer 1..48");
     check(baseline.window >= 3 && baseline.window <= 15 && baseline.window % 2 == 1, "window",
           baseline.window, "allowed: odd integer 3..15");
     check(!baseline.noise || (*baseline.noise >= 0 && std::isfinite(*baseline.noise)), "noise",

@@ -5,16 +5,24 @@
 #include <string_view>
 #include <vector>
 
+#include "casmap/mapper/unknown.hpp"
+
 namespace casmap::mapper {
 
-/// The five filters of the paper's benchmark (Sec. III.A).
-enum class FilterMethod { kCas, kWiener, kAverage, kMedian, kCwm };
+/// The five filters of the paper's benchmark (Sec. III.A), then the wave-2 CAS variants
+/// (docs/paper-notes.md "Beyond the paper"): cas_terrain (heights relative to a local ground
+/// estimate) and cas_trail (removal also of low-certainty cells without support at their
+/// own height: the mixed-pixel trail beside a pole).
+enum class FilterMethod { kCas, kWiener, kAverage, kMedian, kCwm, kCasTerrain, kCasTrail };
 
-/// "cas|wiener|average|median|cwm" -> method; throws InputError naming `field`.
+/// "cas|wiener|average|median|cwm|cas_terrain|cas_trail" -> method; throws InputError
+/// naming `field`.
 [[nodiscard]] FilterMethod ParseFilterMethod(std::string_view name,
                                              const std::string& field = "--method");
 [[nodiscard]] std::string_view ToString(FilterMethod method);
+/// The paper's five (the benchmark's columns); AllFilterMethodsWithVariants() adds the rest.
 [[nodiscard]] const std::vector<FilterMethod>& AllFilterMethods();
+[[nodiscard]] const std::vector<FilterMethod>& AllFilterMethodsWithVariants();
 
 /// Eq. 9 form of the spatial-continuity test g_s.
 enum class GsMode { kSum, kVariance };
@@ -22,6 +30,12 @@ enum class GsMode { kSum, kVariance };
 enum class Normalise { kWindow, kGlobal };
 /// Whether never-observed (c = 0) cells of the Fig. 5 skeleton enter the weighted median.
 enum class WmEmpty { kInclude, kSkip };
+/// What Eq. 9's heights are measured from: 0 m (the paper's flat floor) or a local ground
+/// estimate (a low quantile of the observed heights around the cell): cas_terrain.
+enum class Ground { kZero, kLocal };
+/// Extra removal test (cas_trail): off, or remove cells with c <= A that have fewer than
+/// support_min trusted (c > A) window cells within support_tol_m of their own height.
+enum class Support { kOff, kHeight };
 
 /// CAS filter parameters (Eq. 7-10); defaults are the paper's values.
 struct CasParams {
@@ -39,6 +53,14 @@ struct CasParams {
     bool e_term = false;                   // Eq. 10 sigma_c-bar > E term; the paper dropped it
     double E = 0.04;                       // Eq. 10
     WmEmpty wm_empty = WmEmpty::kInclude;  // Fig. 5 as printed: all 45 samples
+    // --- wave 2 (docs/paper-notes.md "Beyond the paper"); defaults = the paper's filter ---
+    Unknown unknown = Unknown::kZero;  // kNaN: NaN cells are unknown (removed -> NaN, never 0)
+    Ground ground = Ground::kZero;     // kLocal for cas_terrain
+    int ground_k = 4;                  // ground window (2 ground_k + 1)^2
+    double ground_quantile = 0.5;      // quantile of the observed heights taken as ground
+    Support support = Support::kOff;   // kHeight for cas_trail
+    double support_tol_m = 0.05;       // "same height" (the spike threshold)
+    int support_min = 2;               // trusted same-height cells needed to keep a cell
 
     /// Eq. 8: A = a * (round(s / (v dt)) + 2), or the given A.
     [[nodiscard]] double EffectiveA() const;
@@ -48,9 +70,10 @@ struct CasParams {
 
 /// Baseline filter parameters (Wiener, averaging, median, centre-weighted median).
 struct BaselineParams {
-    int window = 5;               // odd side length of the square window
-    std::optional<double> noise;  // Wiener noise power (m^2); mean local variance if unset
-    int center_weight = 3;        // CWM: copies of the centre pixel (odd, so the count is odd)
+    int window = 5;                    // odd side length of the square window
+    std::optional<double> noise;       // Wiener noise power (m^2); mean local variance if unset
+    int center_weight = 3;             // CWM: copies of the centre pixel (odd, so the count is odd)
+    Unknown unknown = Unknown::kZero;  // kNaN: statistics over the window's known cells only
 };
 
 /// Every filter parameter, settable by name (`--set NAME=VALUE`).
@@ -58,8 +81,9 @@ struct FilterParams {
     CasParams cas;
     BaselineParams baseline;
 
-    /// Sets one parameter by name; throws InputError for an unknown name or a value out of
-    /// range, naming "--set", the parameter, the value and the rule.
+    /// Sets one parameter by name (`unknown` sets cas.unknown and baseline.unknown); throws
+    /// InputError for an unknown name or a value out of range, naming "--set", the parameter, the
+    /// value and the rule.
     void Set(std::string_view name, std::string_view value);
     /// Parses "NAME=VALUE" and calls Set.
     void SetAssignment(std::string_view assignment);

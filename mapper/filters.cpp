@@ -18,6 +18,16 @@ FilterResult RunFilter(FilterMethod method,
             return FilterResult{MedianFilter(elevation, params.baseline), {}};
         case FilterMethod::kCwm:
             return FilterResult{CwmFilter(elevation, params.baseline), {}};
+        case FilterMethod::kCasTerrain: {
+            CasParams p = params.cas;
+            p.ground = Ground::kLocal;
+            return CasFilter(elevation, certainty, p);
+        }
+        case FilterMethod::kCasTrail: {
+            CasParams p = params.cas;
+            p.support = Support::kHeight;
+            return CasFilter(elevation, certainty, p);
+        }
     }
     return {};
 }

@@ -27,15 +27,29 @@ void CheckShapes(const core::MapF& a, const core::MapF& b, const Region& region)
     }
 }
 
-double SquaredError(const core::MapF& a, const core::MapF& b, const Region& r) {
-    double sum = 0.0;
+// Sum of (a - b)^2 over the region's cells where a, b (and `also`, when given) are all
+// finite, and the number of those cells. With the paper's 0-for-unknown maps every cell
+// counts and the sum is the same, in the same order, as before NaN maps existed.
+struct Sum {
+    double sq = 0.0;
+    std::int64_t cells = 0;
+};
+Sum SquaredError(const core::MapF& a,
+                 const core::MapF& b,
+                 const Region& r,
+                 const core::MapF* also = nullptr) {
+    Sum s;
     for (int i = r.row0; i < r.row0 + r.rows; ++i) {
         for (int j = r.col0; j < r.col0 + r.cols; ++j) {
             const double d = static_cast<double>(a.at(i, j)) - static_cast<double>(b.at(i, j));
-            sum += d * d;
+            if (std::isnan(d) || (also != nullptr && std::isnan(also->at(i, j)))) {
+                continue;
+            }
+            s.sq += d * d;
+            ++s.cells;
         }
     }
-    return sum;
+    return s;
 }
 
 void AddClass(ClassShares& s, PixelClass cls) {
@@ -90,14 +104,14 @@ double PerformanceIndex(const core::MapF& filtered,
                         const Region& region) {
     CheckShapes(truth, filtered, region);
     CheckShapes(truth, raw, region);
-    const double den = SquaredError(raw, truth, region);
-    return den > 0.0 ? SquaredError(filtered, truth, region) / den : kNaN;
+    const double den = SquaredError(raw, truth, region, &filtered).sq;
+    return den > 0.0 ? SquaredError(filtered, truth, region, &raw).sq / den : kNaN;
 }
 
 double Rmse(const core::MapF& a, const core::MapF& b, const Region& region) {
     CheckShapes(a, b, region);
-    const double n = static_cast<double>(region.rows) * static_cast<double>(region.cols);
-    return n > 0 ? std::sqrt(SquaredError(a, b, region) / n) : kNaN;
+    const Sum s = SquaredError(a, b, region);
+    return s.cells > 0 ? std::sqrt(s.sq / static_cast<double>(s.cells)) : kNaN;
 }
 
 ClassReport ClassPercentages(const ClassMap& classes, const core::MapF& certainty) {
@@ -131,9 +145,12 @@ std::int64_t CountSpikes(const core::MapF& map,
             float highest = -std::numeric_limits<float>::infinity();
             for (int r = std::max(0, i - rad); r <= std::min(truth.rows - 1, i + rad); ++r) {
                 for (int c = std::max(0, j - rad); c <= std::min(truth.cols - 1, j + rad); ++c) {
-                    highest = std::max(highest, truth.at(r, c));
+                    if (!std::isnan(truth.at(r, c))) {
+                        highest = std::max(highest, truth.at(r, c));
+                    }
                 }
             }
+            // An unknown (NaN) map cell is no spike: the comparison below is false.
             if (static_cast<double>(map.at(i, j)) - static_cast<double>(highest) >
                 rule.threshold_m) {
                 ++count;
@@ -149,8 +166,16 @@ FilterMetrics EvaluateFilter(const FilterResult& result,
                              const Region& region) {
     FilterMetrics m;
     m.pi = PerformanceIndex(result.elevation, raw, truth, region);
-    m.rmse_m = Rmse(result.elevation, truth, region);
-    m.raw_rmse_m = Rmse(raw, truth, region);
+    const Sum filtered = SquaredError(result.elevation, truth, region, &raw);
+    const Sum raw_sum = SquaredError(raw, truth, region, &result.elevation);
+    m.cells = filtered.cells;
+    m.rmse_m =
+        filtered.cells > 0 ? std::sqrt(filtered.sq / static_cast<double>(filtered.cells)) : kNaN;
+    m.raw_rmse_m =
+        raw_sum.cells > 0 ? std::sqrt(raw_sum.sq / static_cast<double>(raw_sum.cells)) : kNaN;
+    const std::int64_t raw_known = SquaredError(raw, truth, region).cells;
+    m.coverage =
+        raw_known > 0 ? static_cast<double>(m.cells) / static_cast<double>(raw_known) : kNaN;
     m.spikes = CountSpikes(result.elevation, truth, region);
     m.raw_spikes = CountSpikes(raw, truth, region);
     const bool have_classes =
@@ -163,12 +188,15 @@ FilterMetrics EvaluateFilter(const FilterResult& result,
         for (int j = region.col0; j < region.col0 + region.cols; ++j) {
             const double d = static_cast<double>(result.elevation.at(i, j)) -
                              static_cast<double>(truth.at(i, j));
+            if (std::isnan(d)) {
+                continue;  // unknown in the filtered map or the truth (NaN maps)
+            }
             if (have_classes &&
                 result.classes.at(i, j) == static_cast<std::uint8_t>(PixelClass::kFilled)) {
                 ++m.filled_cells;
                 filled_sq += d * d;
             }
-            if (IsTruthEdge(truth, i, j, step_m)) {
+            if (!std::isnan(raw.at(i, j)) && IsTruthEdge(truth, i, j, step_m)) {
                 ++edges;
                 edge_sq += d * d;
             }

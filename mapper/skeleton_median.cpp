@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <cstdlib>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -246,10 +247,7 @@ __attribute__((target("avx2"))) void SkeletonBatchAvx2(const float* h,
 // values sorted (each counted twice) and I the 5 inner ones sorted, the k-th of the union of
 // two sorted lists is min_j max(D_(k-j), I_j); for k = 23 the non-dominated terms leave
 // min(o12, max(o11, i1), max(o10, i3), max(o9, i5)) (1-based ranks).
-void FastSkeletonMedian(const float* h,
-                        int cols,
-                        const std::vector<std::size_t>& fills,
-                        float* out) {
+void FastSkeletonMedian(const float* h, int cols, std::span<const std::size_t> fills, float* out) {
     static const std::vector<Comparator> outer_net = SelectionNetwork(kOuter, 8, 11);
     static const std::vector<Comparator> inner_net = SelectionNetwork(kInner, 0, 4);
     std::array<std::ptrdiff_t, kOuter> outer_off{};
@@ -316,7 +314,7 @@ void GenericSkeletonMedian(const float* h,
                            int cols,
                            int k,
                            WmEmpty wm_empty,
-                           const std::vector<std::size_t>& fills,
+                           std::span<const std::size_t> fills,
                            float* out) {
     std::vector<std::ptrdiff_t> offsets;
     for (int di = -k; di <= k; ++di) {
@@ -352,7 +350,7 @@ void SkeletonMedian(const float* h,
                     int cols,
                     int k,
                     WmEmpty wm_empty,
-                    const std::vector<std::size_t>& fills,
+                    std::span<const std::size_t> fills,
                     float* out) {
     if (k == 2 && wm_empty == WmEmpty::kInclude) {
         FastSkeletonMedian(h, cols, fills, out);

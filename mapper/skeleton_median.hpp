@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "casmap/mapper/filter_params.hpp"
@@ -17,7 +18,7 @@ void SkeletonMedian(const float* h,
                     int cols,
                     int k,
                     WmEmpty wm_empty,
-                    const std::vector<std::size_t>& fills,
+                    std::span<const std::size_t> fills,
                     float* out);
 
 }  // namespace casmap::mapper

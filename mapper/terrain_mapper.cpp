@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -79,7 +80,9 @@ void BeamDirections::Update(const core::Scan& scan) {
 
 TerrainMapper::TerrainMapper(const TerrainMapperConfig& config) : config_(config) {
     config_.Validate();
-    elevation_ = core::MapF(config_.grid.rows, config_.grid.cols, 0.0F);
+    const float unknown =
+        config_.unknown == Unknown::kNaN ? std::numeric_limits<float>::quiet_NaN() : 0.0F;
+    elevation_ = core::MapF(config_.grid.rows, config_.grid.cols, unknown);
     certainty_ = core::MapF(config_.grid.rows, config_.grid.cols, 0.0F);
 }
 
@@ -89,7 +92,7 @@ bool TerrainMapper::AddPoint(const Eigen::Vector3d& p_world, double dz_max_m) {
         return false;
     }
     detail::UpdateCell(elevation_.at(cell->row, cell->col), certainty_.at(cell->row, cell->col),
-                       p_world.z(), dz_max_m, config_.a);
+                       p_world.z(), dz_max_m, config_.a, config_.unknown == Unknown::kNaN);
     return true;
 }
 
@@ -108,16 +111,45 @@ void TerrainMapper::AddBeamCs(const SensorState& state, double ca, double sa, do
     }
 }
 
-void TerrainMapper::AddScan(const core::Scan& scan, const core::Trajectory& world_T_sensor) {
+void TerrainMapper::AddScan(const core::Scan& scan,
+                            const core::Trajectory& world_T_sensor,
+                            std::span<const std::uint8_t> keep) {
+    if (!keep.empty() && keep.size() != scan.beams.size()) {
+        throw MakeInputError(
+            "mapper", "keep labels", std::to_string(keep.size()),
+            "must have one entry per beam (" + std::to_string(scan.beams.size()) + ")");
+    }
     dirs_.Update(scan);
-    detail::ForEachBeamPoint(scan, world_T_sensor, dirs_, config_.scan_period_s, config_.delta_l_m,
-                             stats_, [this](const Eigen::Vector3d& p_world, double dz_max_m) {
-                                 if (AddPoint(p_world, dz_max_m)) {
-                                     ++stats_.beams_mapped;
-                                 } else {
-                                     ++stats_.beams_outside;
-                                 }
-                             });
+    const std::size_t n = scan.beams.size();
+    stats_.beams_seen += n;
+    if (world_T_sensor.empty()) {
+        stats_.beams_no_pose += n;
+        return;
+    }
+    // The batch of detail::ForEachBeamPoint (the live window's path: the same points), plus
+    // the grid cells computed four at a time.
+    thread_local detail::BeamBatch batch;  // per-thread scratch, reused from scan to scan
+    const detail::FillCounts counts =
+        detail::FillBatch(scan, world_T_sensor, dirs_, config_.scan_period_s, keep, batch);
+    stats_.beams_not_ok += counts.not_ok;
+    stats_.beams_rejected += counts.rejected;
+    stats_.beams_no_pose += counts.no_pose;
+    const core::GridGeometry& g = config_.grid;
+    detail::ComputeBatch(config_.delta_l_m, batch, &g);
+    const bool nan = config_.unknown == Unknown::kNaN;
+    for (std::size_t j = 0; j < batch.size; ++j) {
+        const double r = batch.row[j];
+        const double c = batch.col[j];
+        if (!(r >= 0.0 && c >= 0.0 && r < g.rows && c < g.cols)) {
+            ++stats_.beams_outside;  // also NaN
+            continue;
+        }
+        const std::size_t idx = static_cast<std::size_t>(r) * static_cast<std::size_t>(g.cols) +
+                                static_cast<std::size_t>(c);
+        detail::UpdateCell(elevation_.data[idx], certainty_.data[idx], batch.z[j], batch.dz_max[j],
+                           config_.a, nan);
+        ++stats_.beams_mapped;
+    }
 }
 
 }  // namespace casmap::mapper

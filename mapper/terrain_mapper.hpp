@@ -2,12 +2,14 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "casmap/core/grid.hpp"
 #include "casmap/core/pose.hpp"
 #include "casmap/core/scan.hpp"
 #include "casmap/core/trajectory.hpp"
+#include "casmap/mapper/unknown.hpp"
 
 namespace casmap::mapper {
 
@@ -17,6 +19,7 @@ struct TerrainMapperConfig {
     double delta_l_m = 0.032;           // Eq. 4 delta-l: LMS 200 maximum range error [10]
     int a = 3;                          // Eq. 5 certainty increment, a positive integer
     double scan_period_s = 1.0 / 75.0;  // Eq. 4: time between two consecutive measurements
+    Unknown unknown = Unknown::kZero;   // never-observed elevation: 0 (paper) or NaN (grid_map)
     void Validate() const;              // throws InputError naming the field
 };
 
@@ -64,9 +67,10 @@ struct ZPartials {
 /// Counts of what AddScan did with the beams it saw.
 struct MapperStats {
     std::uint64_t beams_seen = 0;
-    std::uint64_t beams_not_ok = 0;   // status != kOk: update nothing
-    std::uint64_t beams_no_pose = 0;  // beam time outside the trajectory: skipped
-    std::uint64_t beams_outside = 0;  // world point outside the grid
+    std::uint64_t beams_not_ok = 0;    // status != kOk: update nothing
+    std::uint64_t beams_rejected = 0;  // a scan pre-filter's keep label was 0: skipped
+    std::uint64_t beams_no_pose = 0;   // beam time outside the trajectory: skipped
+    std::uint64_t beams_outside = 0;   // world point outside the grid
     std::uint64_t beams_mapped = 0;
 };
 
@@ -78,15 +82,20 @@ struct BeamDirections {
     void Update(const core::Scan& scan);  // no-op while the geometry stays the same
 };
 
-/// Elevation map H and certainty map C built by Eq. 1-6. Unknown cells hold elevation 0 and
-/// certainty 0, as in the paper. Certainty is a float count (multiples of a).
+/// Elevation map H and certainty map C built by Eq. 1-6. Unknown cells hold elevation 0 (or NaN
+/// with Unknown::kNaN) and certainty 0, as in the paper. Certainty is a float count (multiples
+/// of a). Cost per beam is independent of the run's length (bench/mapper_bench.cpp).
 class TerrainMapper {
 public:
     explicit TerrainMapper(const TerrainMapperConfig& config);  // validates config
 
     /// Maps every beam of `scan` with the pose at its own time scan.BeamTime(i); beams with
-    /// status != kOk update nothing, beams whose time has no pose are skipped.
-    void AddScan(const core::Scan& scan, const core::Trajectory& world_T_sensor);
+    /// status != kOk update nothing, beams whose time has no pose are skipped. `keep` (empty,
+    /// or one entry per beam, e.g. from mapper/scan_filters.hpp) skips beams labelled 0;
+    /// InputError if its size differs from the scan's.
+    void AddScan(const core::Scan& scan,
+                 const core::Trajectory& world_T_sensor,
+                 std::span<const std::uint8_t> keep = {});
 
     /// Lower-level entry: one valid beam (sensor frame angle, range in m) at a known state.
     void AddBeam(const SensorState& state, double angle_rad, double range_m);

@@ -285,6 +285,14 @@ void GroundTruthOptions::Validate() const {
     }
 }
 
+bool ClampsToDatum(const core::Scene& scene, const GroundTruthOptions& options) {
+    if (options.clamp_to_datum) {
+        return *options.clamp_to_datum;
+    }
+    return std::none_of(scene.objects.begin(), scene.objects.end(),
+                        [](const core::SceneObject& o) { return o.terrain; });
+}
+
 core::MapF GroundTruthElevation(const core::Scene& scene,
                                 const core::GridGeometry& grid,
                                 int threads) {
@@ -301,6 +309,7 @@ core::MapF GroundTruthElevation(const core::Scene& scene,
     // The centre rule needs the rows whose centre line meets a primitive; binning by the
     // primitive's x extent is a superset of those.
     const RowBins bins = BinByRow(prims, grid);
+    const bool clamp = ClampsToDatum(scene, options);
     core::MapF map(grid.rows, grid.cols, 0.0F);
     core::ParallelFor(static_cast<std::size_t>(grid.rows), threads, [&](std::size_t row) {
         const int r = static_cast<int>(row);
@@ -313,7 +322,7 @@ core::MapF GroundTruthElevation(const core::Scene& scene,
         for (int c = 0; c < grid.cols; ++c) {
             const double top = z[static_cast<std::size_t>(c)];
             const double value = top == kNone             ? options.datum_m
-                                 : options.clamp_to_datum ? std::max(options.datum_m, top)
+                                 : clamp                  ? std::max(options.datum_m, top)
                                                           : top;
             map.at(r, c) = static_cast<float>(value);
         }

@@ -3,6 +3,8 @@
 // Exact ground-truth elevation maps from scene geometry (DESIGN.md "Ground truth"): never from
 // the simulated scanner.
 
+#include <optional>
+
 #include "casmap/core/grid.hpp"
 #include "casmap/core/scene.hpp"
 
@@ -17,9 +19,13 @@ enum class TruthRule {
 struct GroundTruthOptions {
     TruthRule rule = TruthRule::kHighestInCell;
     double datum_m = 0.0;          // world z of the map datum
-    bool clamp_to_datum = true;    // true: max(datum, highest point), so cells with nothing
-                                   // above the datum hold the datum (DESIGN.md); false: a cell
-                                   // keeps a surface below the datum, empty cells hold the datum
+    // Clamp at the datum: max(datum, highest point), so cells with nothing above the datum
+    // hold the datum (the paper's flat-floor setting, DESIGN.md). Unset (the default): clamp
+    // only scenes without a `terrain: true` object (the obstacle courses, whose floor top is
+    // the datum anyway); terrain scenes keep ground below the datum (ditches, hollows), so
+    // RMSE on rough ground is not measured against a floor that is not there. Empty cells
+    // (no surface at all) hold the datum either way.
+    std::optional<bool> clamp_to_datum;
     int cylinder_segments = 1024;  // facets of a tilted cylinder (sagitta r (1 - cos(pi / n)));
                                    // vertical cylinders are exact discs
     void Validate() const;         // throws InputError naming the field
@@ -33,6 +39,9 @@ struct GroundTruthOptions {
 [[nodiscard]] core::MapF GroundTruthElevation(const core::Scene& scene,
                                               const core::GridGeometry& grid,
                                               int threads);
+
+/// Whether `options` clamp heights of `scene` at the datum (the rule of clamp_to_datum).
+[[nodiscard]] bool ClampsToDatum(const core::Scene& scene, const GroundTruthOptions& options);
 
 /// Same with explicit options (rule, datum, clamping).
 [[nodiscard]] core::MapF GroundTruthElevation(const core::Scene& scene,

@@ -1,4 +1,5 @@
-// casmap filter --method cas|wiener|average|median|cwm --elevation H.tiff [--certainty C.tiff]
+// casmap filter --method cas|wiener|average|median|cwm|cas_terrain|cas_trail --elevation H.tiff
+// [--certainty C.tiff]
 //               [--set NAME=VALUE]... --out OUT.tiff [--threads N]
 // Filters an elevation map (32-bit float TIFF, metres) with one of the paper's five filters and
 // writes OUT.tiff (32-bit float), OUT.png (colour, legend) and, for cas, OUT_classes.tiff
@@ -31,14 +32,24 @@ struct FilterOptions {
 };
 
 // Maps on disk must hold finite numbers; certainty counts are >= 0.
-void CheckValues(const core::MapF& map, const std::string& file, bool non_negative) {
+// allow_nan: unknown cells may be NaN (--set unknown=nan); infinities are never allowed.
+void CheckValues(const core::MapF& map,
+                 const std::string& file,
+                 bool non_negative,
+                 bool allow_nan = false) {
     for (int i = 0; i < map.rows; ++i) {
         for (int j = 0; j < map.cols; ++j) {
             const float v = map.at(i, j);
+            if (allow_nan && std::isnan(v)) {
+                continue;
+            }
             if (!std::isfinite(v) || (non_negative && v < 0.0F)) {
                 throw MakeInputError(
                     file, "pixel (row " + std::to_string(i) + ", col " + std::to_string(j) + ")",
-                    std::to_string(v), non_negative ? "must be finite and >= 0" : "must be finite");
+                    std::to_string(v),
+                    non_negative ? "must be finite and >= 0"
+                                 : (allow_nan ? "must be finite or NaN"
+                                              : "must be finite (NaN needs --set unknown=nan)"));
             }
         }
     }
@@ -74,11 +85,14 @@ void RunFilterCommand(const FilterOptions& opt) {
     if (!fs::is_directory(dir)) {
         throw MakeInputError("", "--out", opt.out, "directory " + dir.string() + " does not exist");
     }
-    if (method == mapper::FilterMethod::kCas && opt.certainty.empty()) {
-        throw MakeInputError("", "--certainty", "", "required for --method cas");
+    const bool cas = method == mapper::FilterMethod::kCas ||
+                     method == mapper::FilterMethod::kCasTerrain ||
+                     method == mapper::FilterMethod::kCasTrail;
+    if (cas && opt.certainty.empty()) {
+        throw MakeInputError("", "--certainty", "", "required for --method " + opt.method);
     }
     const core::MapF elevation = io::ReadMapTiff(opt.elevation);
-    CheckValues(elevation, opt.elevation, false);
+    CheckValues(elevation, opt.elevation, false, params.cas.unknown == mapper::Unknown::kNaN);
     core::MapF certainty;
     if (!opt.certainty.empty()) {
         certainty = io::ReadMapTiff(opt.certainty);
@@ -106,7 +120,7 @@ void RunFilterCommand(const FilterOptions& opt) {
 
     io::WriteMapTiff(out, result.elevation);
     io::WriteMapPng(Beside(out, "", ".png"), result.elevation, style);
-    if (method == mapper::FilterMethod::kCas) {
+    if (cas) {
         core::MapF codes(result.classes.rows, result.classes.cols);
         for (std::size_t i = 0; i < codes.data.size(); ++i) {
             codes.data[i] = static_cast<float>(result.classes.data[i]);
@@ -131,7 +145,8 @@ void AddFilterCommand(CLI::App& app, CommonOptions& common) {
     auto opt = std::make_shared<FilterOptions>();
     CLI::App* sub =
         app.add_subcommand("filter", "Filter an elevation map: CAS (Eq. 7-10) or a 5x5 baseline");
-    sub->add_option("--method", opt->method, "cas|wiener|average|median|cwm")->required();
+    sub->add_option("--method", opt->method, "cas|wiener|average|median|cwm|cas_terrain|cas_trail")
+        ->required();
     sub->add_option("--elevation", opt->elevation, "elevation map H, 32-bit float TIFF (m)")
         ->required();
     sub->add_option("--certainty", opt->certainty,

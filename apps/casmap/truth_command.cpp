@@ -1,5 +1,5 @@
 // casmap truth --scene FILE --grid X0,Y0,CELL_M,ROWS,COLS --out FILE.tiff [--png FILE.png]
-//              [--rule highest|centre] [--keep-below-datum]
+//              [--rule highest|centre] [--keep-below-datum | --clamp-to-datum]
 // The exact ground-truth elevation map of a scene (sim/ground_truth.hpp) as a single-channel
 // 32-bit float TIFF in metres; rows along world x, columns along y (DESIGN.md "Map grid").
 #include <algorithm>
@@ -25,6 +25,7 @@ struct TruthOptions {
     std::string out;
     std::string rule = "highest";
     bool keep_below_datum = false;
+    bool clamp_to_datum = false;
     std::string png;  // optional colour PNG for people
 };
 
@@ -40,7 +41,13 @@ void RunTruth(const TruthOptions& opt, const CommonOptions& common) {
     sim::GroundTruthOptions options;
     options.rule =
         opt.rule == "centre" ? sim::TruthRule::kCellCentre : sim::TruthRule::kHighestInCell;
-    options.clamp_to_datum = !opt.keep_below_datum;
+    if (opt.keep_below_datum && opt.clamp_to_datum) {
+        throw MakeInputError("command line", "--clamp-to-datum", "--keep-below-datum",
+                             "the two flags exclude each other");
+    }
+    if (opt.keep_below_datum || opt.clamp_to_datum) {
+        options.clamp_to_datum = opt.clamp_to_datum;
+    }  // neither: clamp unless the scene has terrain (sim::ClampsToDatum)
     const core::Scene scene = io::LoadScene(opt.scene);
     const core::MapF map = sim::GroundTruthElevation(scene, grid, options, common.threads);
     io::WriteMapTiff(opt.out, map);
@@ -70,7 +77,10 @@ void AddTruthCommand(CLI::App& app, CommonOptions& common) {
         ->check(CLI::IsMember({"highest", "centre"}));
     sub->add_option("--png", opt->png, "also write a colour PNG of the map");
     sub->add_flag("--keep-below-datum", opt->keep_below_datum,
-                  "keep surfaces below z = 0 instead of reporting 0 there");
+                  "keep surfaces below z = 0 (the default for scenes with terrain)");
+    sub->add_flag("--clamp-to-datum", opt->clamp_to_datum,
+                  "report 0 where the surface lies below z = 0 (the default for scenes "
+                  "without terrain, as the paper's flat floor)");
     AddThreadsOption(sub, common);
     sub->callback([opt, &common] { RunTruth(*opt, common); });
 }

@@ -57,7 +57,37 @@ TEST(FilterParams, SetsEveryNamedParameter) {
     EXPECT_EQ(p.baseline.window, 7);
     EXPECT_EQ(p.cas.speed_m_s, 0.5);
     EXPECT_NO_THROW(p.Validate());
-    EXPECT_EQ(FilterParams::Names().size(), 17U);
+    EXPECT_EQ(FilterParams::Names().size(), 24U);
+}
+
+TEST(FilterParams, SetsTheWaveTwoOptions) {
+    FilterParams p;
+    p.Set("unknown", "nan");
+    p.Set("ground", "local");
+    p.Set("ground_k", "3");
+    p.Set("ground_quantile", "0.5");
+    p.Set("support", "height");
+    p.Set("support_tol_m", "0.04");
+    p.Set("support_min", "3");
+    EXPECT_EQ(p.cas.unknown, Unknown::kNaN);
+    EXPECT_EQ(p.baseline.unknown, Unknown::kNaN);
+    EXPECT_EQ(p.cas.ground, Ground::kLocal);
+    EXPECT_EQ(p.cas.ground_k, 3);
+    EXPECT_EQ(p.cas.ground_quantile, 0.5);
+    EXPECT_EQ(p.cas.support, Support::kHeight);
+    EXPECT_EQ(p.cas.support_tol_m, 0.04);
+    EXPECT_EQ(p.cas.support_min, 3);
+    EXPECT_NO_THROW(p.Validate());
+    for (const char* bad : {"unknown=none", "ground=flat", "ground_k=0", "ground_quantile=1.5",
+                            "support=yes", "support_tol_m=0", "support_min=0"}) {
+        const std::string e = SetError(bad);
+        const std::string name = std::string(bad).substr(0, std::string(bad).find('='));
+        EXPECT_NE(e.find(name), std::string::npos) << bad << ": " << e;
+        EXPECT_NE(e.find("allowed"), std::string::npos) << bad << ": " << e;
+    }
+    EXPECT_EQ(ParseFilterMethod("cas_terrain"), FilterMethod::kCasTerrain);
+    EXPECT_EQ(ParseFilterMethod("cas_trail"), FilterMethod::kCasTrail);
+    EXPECT_EQ(AllFilterMethods().size(), 5U);  // the paper's benchmark columns stay five
 }
 
 TEST(FilterParams, RejectsUnknownName) {

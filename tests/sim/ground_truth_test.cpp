@@ -180,6 +180,19 @@ TEST(GroundTruth, DatumClampAndBelowDatum) {
     EXPECT_EQ(raw.at(0, 0), 0.0F);  // nothing there: the datum
 }
 
+TEST(GroundTruth, TerrainScenesKeepGroundBelowTheDatumByDefault) {
+    core::Scene scene;
+    scene.objects.push_back(Object("hollow", core::BoxShape{{0.5, 0.5, 0.1}}, {2.0, 0.0, -0.15}));
+    scene.objects.back().terrain = true;
+    EXPECT_FALSE(ClampsToDatum(scene, {}));
+    EXPECT_NEAR(GroundTruthElevation(scene, kGrid, 1).at(40, 40), -0.1, 1e-7);
+    GroundTruthOptions clamp;
+    clamp.clamp_to_datum = true;  // the paper's flat-floor setting, asked for explicitly
+    EXPECT_EQ(GroundTruthElevation(scene, kGrid, clamp, 1).at(40, 40), 0.0F);
+    scene.objects.back().terrain = false;  // no terrain object: a course, clamped
+    EXPECT_TRUE(ClampsToDatum(scene, {}));
+}
+
 TEST(GroundTruth, SameResultAtAnyThreadCount) {
     const core::Scene scene =
         io::LoadScene(std::string(CASMAP_SOURCE_DIR) + "/scenes/courses/course08.yaml");
