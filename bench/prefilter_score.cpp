@@ -36,6 +36,11 @@ std::vector<Setting> Settings() {
         s.jump_config.margin_m = std::min(0.03, 0.4 * jump);
         out.push_back(s);
     }
+    for (const double chord : {0.02, 0.1}) {
+        Setting s{"range_jump chord_tol_m=" + std::to_string(chord).substr(0, 4), false, {}, {}};
+        s.jump_config.chord_tol_m = chord;
+        out.push_back(s);
+    }
     return out;
 }
 

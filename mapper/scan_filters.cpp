@@ -45,6 +45,8 @@ void RangeJumpConfig::Validate() const {
             "allowed: > 0");
     Require(std::isfinite(margin_m) && margin_m >= 0.0 && 2.0 * margin_m < jump_min_m,
             "range_jump.margin_m", margin_m, "allowed: >= 0 and < jump_min_m / 2");
+    Require(std::isfinite(chord_tol_m) && chord_tol_m >= 0.0, "range_jump.chord_tol_m", chord_tol_m,
+            "allowed: >= 0");
 }
 
 std::vector<std::uint8_t> ShadowFilterLabels(const core::Scan& scan,
@@ -101,8 +103,23 @@ std::vector<std::uint8_t> RangeJumpLabels(const core::Scan& scan, const RangeJum
         const double r = scan.beams[i].range_m;
         const double near = std::min(a, b);
         const double far = std::max(a, b);
-        if (far - near > config.jump_min_m && r > near + config.margin_m &&
-            r < far - config.margin_m) {
+        if (!(far - near > config.jump_min_m && r > near + config.margin_m &&
+              r < far - config.margin_m)) {
+            continue;
+        }
+        // Where beam i crosses the chord p_(i-1) p_(i+1), in the frame of beam i.
+        const double t = scan.angle_step_rad;
+        const double ax = a * std::cos(-t);
+        const double ay = a * std::sin(-t);
+        const double bx = b * std::cos(t);
+        const double by = b * std::sin(t);
+        // Point on the chord with y = 0: A + u (B - A), u = -ay / (by - ay).
+        const double dy = by - ay;
+        if (std::abs(dy) < 1e-12) {
+            continue;  // chord parallel to the beam: no crossing
+        }
+        const double on_chord = ax - ay * (bx - ax) / dy;
+        if (std::abs(r - on_chord) > config.chord_tol_m) {
             keep[i] = 0;
         }
     }

@@ -29,13 +29,16 @@ struct ShadowFilterConfig {
 };
 
 /// Range-jump mixed-pixel test: beam i is rejected when its two direct neighbours' ranges
-/// differ by more than jump_min_m (a depth edge the pulse may straddle) and its own range lies
-/// between them, more than margin_m from both (a mixed pixel, not the foreground or the
-/// background). Beams without two valid neighbours are kept.
+/// differ by more than jump_min_m (a depth edge the pulse may straddle), its own range lies
+/// between them, more than margin_m from both (neither the foreground nor the background),
+/// and its point lies off the chord between the neighbours' points by more than chord_tol_m
+/// along its beam (a surface seen at a grazing angle has large range steps too, but its
+/// points are collinear in the scan plane). Beams without two valid neighbours are kept.
 struct RangeJumpConfig {
-    double jump_min_m = 0.1;  // smallest neighbour gap treated as a depth edge
-    double margin_m = 0.03;   // about the LMS 200's maximum range error (delta-l = 32 mm)
-    void Validate() const;    // throws InputError naming the field ("range_jump.<field>")
+    double jump_min_m = 0.1;    // smallest neighbour gap treated as a depth edge
+    double margin_m = 0.03;     // about the LMS 200's maximum range error (delta-l = 32 mm)
+    double chord_tol_m = 0.05;  // off-chord distance along the beam that marks a mixed pixel
+    void Validate() const;      // throws InputError naming the field ("range_jump.<field>")
 };
 
 /// Labels, one per beam: 1 keep, 0 reject. Beams whose status is not kOk are kept (the
