@@ -13,3 +13,8 @@ if(TARGET casmap::mapper AND TARGET casmap::io)
     add_executable(prefilter_score ${CMAKE_CURRENT_LIST_DIR}/prefilter_score.cpp)
     target_link_libraries(prefilter_score PRIVATE casmap::mapper casmap::io)
 endif()
+# Mapper modes and CAS variants scored on simulated runs (reads run files: needs io).
+if(TARGET casmap::mapper AND TARGET casmap::io)
+    add_executable(variants_score ${CMAKE_CURRENT_LIST_DIR}/variants_score.cpp)
+    target_link_libraries(variants_score PRIVATE casmap::mapper casmap::io)
+endif()

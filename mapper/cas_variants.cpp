@@ -7,11 +7,12 @@
 //   floor is; a removed cell takes the ground height g (the paper's 0 is its floor's height);
 //   a filled cell takes the weighted median of the actual heights.
 // - support = height (cas_trail): a cell with 0 < c <= A is also removed when fewer than
-//   support_min window cells are trusted (c > A) and within support_tol_m of its height. A
-//   mixed-pixel trail beside a pole has heights between the pole's top and the floor, so its
-//   trusted neighbours (pole, floor) never share its height, while Eq. 10's window certainty
-//   is high there (the area is well observed), which is why the paper's test keeps it. The
-//   pole itself has c > A and is never a removal candidate.
+//   support_min known window cells lie within support_tol_m of its height. A mixed-pixel
+//   trail beside a pole has heights scattered between the pole's top and the floor, so few
+//   neighbours share its height, while Eq. 10's window certainty is high there (the area is
+//   well observed), which is why the paper's test keeps it. Floor, slopes and box tops (even
+//   seen once) have many neighbours at their height; the pole's core has c > A and is never a
+//   removal candidate.
 #include "casmap/mapper/cas_variants.hpp"
 
 #include <algorithm>
@@ -55,14 +56,13 @@ bool SkeletonMedianAt(const core::MapF& h,
     return true;
 }
 
-// Trusted (c > A) cells of the window within tol of h(i, j), the centre excluded.
-int HeightSupport(
-    const core::MapF& h, const core::MapF& c, int i, int j, int k, float A, float tol) {
+// Known (c > 0) cells of the window within tol of h(i, j), the centre excluded.
+int HeightSupport(const core::MapF& h, const core::MapF& c, int i, int j, int k, float tol) {
     const float hc = h.at(i, j);
     int n = 0;
     for (int di = -k; di <= k; ++di) {
         for (int dj = -k; dj <= k; ++dj) {
-            if ((di != 0 || dj != 0) && c.at(i + di, j + dj) > A &&
+            if ((di != 0 || dj != 0) && c.at(i + di, j + dj) > 0.0F &&
                 std::abs(h.at(i + di, j + dj) - hc) <= tol) {
                 ++n;
             }
@@ -140,7 +140,7 @@ void CasVariantInto(const core::MapF& h,
             auto cls = static_cast<PixelClass>(out.classes.data[idx]);
             const float cij = c0.data[idx];
             if (p.support == Support::kHeight && cls == PixelClass::kUntouched && cij > 0.0F &&
-                cij <= A && HeightSupport(h0, c0, i, j, p.k, A, tol) < p.support_min) {
+                cij <= A && HeightSupport(h0, c0, i, j, p.k, tol) < p.support_min) {
                 cls = PixelClass::kRemoved;
                 out.classes.data[idx] = static_cast<std::uint8_t>(cls);
             }

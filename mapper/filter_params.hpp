@@ -33,8 +33,8 @@ enum class WmEmpty { kInclude, kSkip };
 /// What Eq. 9's heights are measured from: 0 m (the paper's flat floor) or a local ground
 /// estimate (a low quantile of the observed heights around the cell): cas_terrain.
 enum class Ground { kZero, kLocal };
-/// Extra removal test (cas_trail): off, or remove cells with c <= A that have fewer than
-/// support_min trusted (c > A) window cells within support_tol_m of their own height.
+/// Extra removal test (cas_trail): off, or remove cells with 0 < c <= A that have fewer than
+/// support_min known window cells within support_tol_m of their own height.
 enum class Support { kOff, kHeight };
 
 /// CAS filter parameters (Eq. 7-10); defaults are the paper's values.
@@ -60,7 +60,7 @@ struct CasParams {
     double ground_quantile = 0.5;      // quantile of the observed heights taken as ground
     Support support = Support::kOff;   // kHeight for cas_trail
     double support_tol_m = 0.05;       // "same height" (the spike threshold)
-    int support_min = 2;               // trusted same-height cells needed to keep a cell
+    int support_min = 5;               // known same-height window cells needed to keep a cell
 
     /// Eq. 8: A = a * (round(s / (v dt)) + 2), or the given A.
     [[nodiscard]] double EffectiveA() const;
