@@ -1,11 +1,13 @@
 // The CAS filter's wave-2 forms (docs/paper-notes.md "Beyond the paper"). They reuse the
 // paper's classification (cas_filter.cpp) on prepared inputs and post-process its classes:
 // - unknown = nan: NaN cells enter as h = 0, c = 0 (never observed); removed cells become NaN
-//   (unknown) instead of 0; the weighted median skips unknown cells; untouched NaN stays NaN.
+//   (unknown) instead of 0 (with ground = local a removed known cell takes the ground height);
+//   the weighted median skips unknown cells; untouched NaN stays NaN.
 // - ground = local (cas_terrain): Eq. 9's heights are h - g with g a low quantile of the
 //   known heights around the cell, so a slope, a hill or a ditch is continuous as the flat
-//   floor is; a removed cell takes the ground height g (the paper's 0 is its floor's height);
-//   a filled cell takes the weighted median of the actual heights.
+//   floor is (unknown cells keep relative height 0); a removed known cell takes the ground
+//   height g (the paper's 0 is its floor's height), in either unknown convention; a filled cell
+//   takes the weighted median of the actual heights.
 // - support = height (cas_trail): a cell with 0 < c <= A is also removed when fewer than
 //   support_min known window cells lie within support_tol_m of its height. A mixed-pixel
 //   trail beside a pole has heights scattered between the pole's top and the floor, so few
@@ -118,7 +120,8 @@ void CasVariantInto(const core::MapF& h,
     if (local) {
         ground = LocalGround(h0, c0, p.ground_k, p.ground_quantile);
         for (std::size_t n = 0; n < base.data.size(); ++n) {
-            base.data[n] = h0.data[n] - ground.data[n];
+            // Unknown cells stay at relative height 0, as they are at 0 in the paper's form.
+            base.data[n] = c0.data[n] > 0.0F ? h0.data[n] - ground.data[n] : 0.0F;
         }
     }
     CasParams core_params = p;
@@ -146,7 +149,10 @@ void CasVariantInto(const core::MapF& h,
             }
             float& y = out.elevation.data[idx];
             if (cls == PixelClass::kRemoved) {
-                y = nan ? kNaN : (local ? ground.data[idx] : 0.0F);
+                // An unknown cell stays unknown; a known one takes the local ground (cas_terrain),
+                // else the unknown value (the paper's 0, or NaN).
+                const bool known = cij > 0.0F;
+                y = known && local ? ground.data[idx] : (nan ? kNaN : 0.0F);
             } else if (cls == PixelClass::kFilled) {
                 float m = 0.0F;
                 if (SkeletonMedianAt(h0, c0, i, j, p.k, skip, samples, m)) {
