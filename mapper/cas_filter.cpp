@@ -120,6 +120,46 @@ CASMAP_VECTOR_CLONES void ColumnStatsK2(
     }
 }
 
+// The fused path's column statistics straight from the signed heights: |h| is taken on the
+// fly (exact, so the same bits as ColumnStatsK2 on a precomputed |h| map), which saves the
+// pass that wrote the |h| map.
+CASMAP_VECTOR_CLONES void ColumnStatsK2Signed(
+    const float* h, const float* c, std::size_t cols, int top, RowStats& s) {
+    const std::size_t off = static_cast<std::size_t>(top) * cols;
+    const float* __restrict h0 = h + off;
+    const float* __restrict h1 = h0 + cols;
+    const float* __restrict h2 = h1 + cols;
+    const float* __restrict h3 = h2 + cols;
+    const float* __restrict h4 = h3 + cols;
+    const float* __restrict c0 = c + off;
+    const float* __restrict c1 = c0 + cols;
+    const float* __restrict c2 = c1 + cols;
+    const float* __restrict c3 = c2 + cols;
+    const float* __restrict c4 = c3 + cols;
+    float* __restrict sc = s.col_c.data();
+    float* __restrict sh = s.col_h.data();
+    float* __restrict sm = s.col_max.data();
+    for (std::size_t j = 0; j < cols; ++j) {
+        sc[j] = (((c0[j] + c1[j]) + c2[j]) + c3[j]) + c4[j];
+    }
+    for (std::size_t j = 0; j < cols; ++j) {
+        sh[j] = (((std::abs(h0[j]) + std::abs(h1[j])) + std::abs(h2[j])) + std::abs(h3[j])) +
+                std::abs(h4[j]);
+    }
+    for (std::size_t j = 0; j < cols; ++j) {
+        float m = std::abs(h0[j]);
+        const float a1 = std::abs(h1[j]);
+        const float a2 = std::abs(h2[j]);
+        const float a3 = std::abs(h3[j]);
+        const float a4 = std::abs(h4[j]);
+        m = a1 > m ? a1 : m;
+        m = a2 > m ? a2 : m;
+        m = a3 > m ? a3 : m;
+        m = a4 > m ? a4 : m;
+        sm[j] = m;
+    }
+}
+
 CASMAP_VECTOR_CLONES void RowStatsK2(
     const float* abs_h, const float* c, std::size_t cols, int top, RowStats& s) {
     ColumnStatsK2(abs_h, c, cols, top, s);
@@ -424,21 +464,25 @@ void CasFilterInto(const core::MapF& elevation,
     // Scratch reused between calls on the same thread (no page faults on every call).
     thread_local std::vector<float> abs_h;
     thread_local std::vector<std::size_t> fills;
-    abs_h.resize(elevation.data.size());
-    AbsInto(elevation.data.data(), abs_h.size(), abs_h.data());
+    const bool general = p.gs_mode == GsMode::kVariance || p.e_term;
+    const bool fused = k == 2 && !general;
+    // The fused path takes |h| on the fly; the others (and a map-wide maximum) need the map.
+    const bool need_abs = !fused || p.normalise == Normalise::kGlobal;
+    if (need_abs) {
+        abs_h.resize(elevation.data.size());
+        AbsInto(elevation.data.data(), abs_h.size(), abs_h.data());
+    }
     if (fills.size() < elevation.data.size()) {
         fills.resize(elevation.data.size());  // grown once, never shrunk: no zeroing per call
     }
     std::size_t n_fills = 0;
     const Thresholds t = MakeThresholds(p, abs_h, certainty);
-    const bool general = p.gs_mode == GsMode::kVariance || p.e_term;
     const float* c = certainty.data.data();
     float* y = out.elevation.data.data();
     RowStats s(cols);
-    const bool fused = k == 2 && !general;
     for (int i = k; i < elevation.rows - k; ++i) {
         if (fused) {
-            ColumnStatsK2(abs_h.data(), c, cols, i - k, s);
+            ColumnStatsK2Signed(elevation.data.data(), c, cols, i - k, s);
         } else {
             ComputeRowStats(abs_h.data(), c, cols, i - k, k, s);
         }
