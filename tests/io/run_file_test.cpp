@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <random>
 #include <sstream>
@@ -313,6 +314,19 @@ TEST(RunFile, AddRunMapsKeepsScansAndOtherLayers) {
     other.grid = core::GridGeometry{0.0, 0.0, 0.05, 4, 3};
     other.truth_m = maps.truth_m;
     EXPECT_THROW(AddRunMaps(dir / "run.h5", other), InputError);
+}
+
+TEST(RunFile, NaNMapsAndNegativeTruthRoundTrip) {
+    // Unknown cells as NaN (mapper Unknown::kNaN) and terrain truth below the datum.
+    const fs::path dir = FreshDir("nanmaps");
+    RunData run = MakeRun(2, 181);
+    run.maps.elevation_m->at(0, 0) = std::numeric_limits<float>::quiet_NaN();
+    run.maps.truth_m->at(1, 1) = -0.12F;
+    WriteRunFile(dir / "run.h5", run);
+    const RunData back = ReadRunFile(dir / "run.h5");
+    EXPECT_TRUE(std::isnan(back.maps.elevation_m->at(0, 0)));
+    EXPECT_EQ(back.maps.truth_m->at(1, 1), -0.12F);
+    ExpectSameMap(*back.maps.elevation_m, *run.maps.elevation_m);
 }
 
 TEST(RunFile, FailedWriteLeavesNoFileAndKeepsTheOldOne) {
