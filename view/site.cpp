@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <system_error>
 
@@ -50,17 +51,24 @@ void PutU32(std::string& out, std::uint32_t v) {
     }
 }
 
-/// One layer of a run file's maps by its /maps name, or nullptr.
-const core::MapF* Layer(const io::RunMaps& maps, const std::string& layer) {
-    if (layer == "elevation_m") return maps.elevation_m ? &*maps.elevation_m : nullptr;
-    if (layer == "certainty") return maps.certainty ? &*maps.certainty : nullptr;
-    if (layer == "truth_m") return maps.truth_m ? &*maps.truth_m : nullptr;
+/// One layer of a run file's maps by its /maps name (the CAS classes as floats), if present.
+std::optional<core::MapF> Layer(const io::RunMaps& maps, const std::string& layer) {
+    if (layer == "elevation_m") return maps.elevation_m;
+    if (layer == "certainty") return maps.certainty;
+    if (layer == "truth_m") return maps.truth_m;
+    if (layer == "cas_classes" && maps.cas_classes) {
+        core::MapF out(maps.cas_classes->rows, maps.cas_classes->cols);
+        for (std::size_t i = 0; i < out.data.size(); ++i) {
+            out.data[i] = static_cast<float>(maps.cas_classes->data[i]);
+        }
+        return out;
+    }
     const std::string prefix = "filtered/";
     if (layer.starts_with(prefix)) {
         const auto it = maps.filtered.find(layer.substr(prefix.size()));
-        return it == maps.filtered.end() ? nullptr : &it->second;
+        if (it != maps.filtered.end()) return it->second;
     }
-    return nullptr;
+    return std::nullopt;
 }
 
 }  // namespace
@@ -226,13 +234,20 @@ Response Site::RunInfo(const std::string& relative) const {
     try {
         const io::RunMaps maps = io::ReadRunMaps(resolved.path);
         json layers = json::array();
-        for (const std::string name : {"elevation_m", "certainty", "truth_m"}) {
-            if (Layer(maps, name) != nullptr) {
+        for (const auto& [name, present] : {std::pair{"elevation_m", maps.elevation_m.has_value()},
+                                            std::pair{"truth_m", maps.truth_m.has_value()}}) {
+            if (present) {
                 layers.push_back(name);
             }
         }
         for (const auto& [name, map] : maps.filtered) {
             layers.push_back("filtered/" + name);
+        }
+        if (maps.certainty) {
+            layers.push_back("certainty");
+        }
+        if (maps.cas_classes) {
+            layers.push_back("cas_classes");
         }
         json grid = nullptr;
         if (maps.grid) {
@@ -255,8 +270,8 @@ Response Site::RunMap(const std::string& relative, const std::string& layer) con
     }
     try {
         const io::RunMaps maps = io::ReadRunMaps(resolved.path);
-        const core::MapF* map = Layer(maps, layer);
-        if (map == nullptr) {
+        const std::optional<core::MapF> map = Layer(maps, layer);
+        if (!map) {
             return Status(404, "no layer '" + layer + "' in " + relative);
         }
         return Response{200, "application/octet-stream", EncodeMap(*map)};

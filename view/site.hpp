@@ -11,7 +11,8 @@
 //   GET /files/<path>          a file under DIR as it is
 //   GET /api/map?path=<tif>    a float TIFF under DIR as a float map (EncodeMap)
 //   GET /api/run?path=<h5>     a run file's map grid and layer names (JSON)
-//   GET /api/runmap?path=<h5>&layer=<name>  one map layer of a run file (EncodeMap)
+//   GET /api/runmap?path=<h5>&layer=<name>  one map layer of a run file (EncodeMap):
+//                              elevation_m, truth_m, filtered/<method>, certainty, cas_classes
 // Only GET and HEAD: every other method is 405.
 
 #include <cstdint>

@@ -221,7 +221,8 @@ def test_dataset(driver, casmap, folder, out):
         driver.find_elements(By.CSS_SELECTOR, "#manifest-table tbody tr")[0].click()
         WebDriverWait(driver, 30).until(
             lambda d: d.find_elements(By.CSS_SELECTOR, 'canvas[data-layer="elevation_m"]'))
-        run = [v for v in json.dumps(lines[0]).split('"') if v.endswith(".h5")][0]
+        run = lines[0]["dir"] + "/" + [f["path"] for f in lines[0]["files"]
+                                       if f["path"].endswith(".h5")][0]
         with h5py.File(os.path.join(folder, run), "r") as h5:
             raw = h5["maps/elevation_m"][()]
         vis_rows, vis_cols = visible_cells(driver, "elevation_m")

@@ -144,6 +144,7 @@ TEST_F(SiteTest, RunFileLayersAndMaps) {
     run.maps.grid = core::GridGeometry{1.0, -2.0, 0.025, 5, 3};
     run.maps.elevation_m = RampMap(5, 3);
     run.maps.filtered["cas"] = RampMap(5, 3);
+    run.maps.cas_classes = core::Raster<std::uint8_t>(5, 3, 2);
     fs::create_directories(dir_ / "samples");
     io::WriteRunFile(dir_ / "samples" / "000000.h5", run);
     const Site site = MakeSite();
@@ -151,11 +152,16 @@ TEST_F(SiteTest, RunFileLayersAndMaps) {
         nlohmann::json::parse(Get(site, "/api/run", {{"path", "samples/000000.h5"}}).body);
     EXPECT_EQ(info["grid"]["x0_m"], 1.0);
     EXPECT_EQ(info["grid"]["rows"], 5);
-    EXPECT_EQ(info["layers"], nlohmann::json::array({"elevation_m", "filtered/cas"}));
+    EXPECT_EQ(info["layers"],
+              nlohmann::json::array({"elevation_m", "filtered/cas", "cas_classes"}));
     const Response map =
         Get(site, "/api/runmap", {{"path", "samples/000000.h5"}, {"layer", "filtered/cas"}});
     ASSERT_EQ(map.status, 200);
     EXPECT_EQ(Decode(map.body).at(3, 2), RampMap(5, 3).at(3, 2));
+    const Response classes =
+        Get(site, "/api/runmap", {{"path", "samples/000000.h5"}, {"layer", "cas_classes"}});
+    ASSERT_EQ(classes.status, 200);
+    EXPECT_EQ(Decode(classes.body).at(4, 1), 2.0F);
     EXPECT_EQ(
         Get(site, "/api/runmap", {{"path", "samples/000000.h5"}, {"layer", "truth_m"}}).status,
         404);

@@ -7,17 +7,27 @@ const flatten = (obj, prefix = '', out = {}) => {
   for (const [k, v] of Object.entries(obj)) {
     const key = prefix ? prefix + '.' + k : k;
     if (v !== null && typeof v === 'object' && !Array.isArray(v)) flatten(v, key, out);
-    else if (!/sha256/.test(key)) out[key] = Array.isArray(v) ? JSON.stringify(v) : v;
+    else if (!/sha256|^files$|^simulate$/.test(key)) out[key] = Array.isArray(v) ? JSON.stringify(v) : v;
   }
   return out;
 };
 
-// Every string of a manifest line that names a file with one of `exts`.
-const filesIn = (obj, exts, out = []) => {
-  for (const v of Object.values(obj)) {
-    if (typeof v === 'string' && exts.some((e) => v.endsWith(e))) out.push(v);
-    else if (v && typeof v === 'object') filesIn(v, exts, out);
+// The files of a manifest line with one of `exts`, as paths under DIR: `files[].path` are
+// relative to the sample's `dir` (casmap dataset); other strings naming files are taken as is.
+const filesIn = (line, exts) => {
+  const out = [];
+  const want = (v) => typeof v === 'string' && exts.some((e) => v.endsWith(e));
+  for (const f of Array.isArray(line.files) ? line.files : []) {
+    if (want(f.path)) out.push(line.dir ? line.dir + '/' + f.path : f.path);
   }
+  if (Array.isArray(line.files)) return out;
+  const walk = (obj) => {
+    for (const v of Object.values(obj)) {
+      if (want(v)) out.push(v);
+      else if (v && typeof v === 'object') walk(v);
+    }
+  };
+  walk(line);
   return out;
 };
 
@@ -29,9 +39,13 @@ cm.showSample = async (body, line) => {
   if (runs.length > 0) {
     const info = await cm.json('/api/run?' + cm.q({ path: runs[0] }));
     grid = info.grid;
-    for (const name of info.layers) {
+    const order = ['elevation_m', 'truth_m', 'filtered/cas', 'filtered/wiener', 'filtered/average',
+      'filtered/median', 'filtered/cwm'];
+    const rank = (n) => (order.includes(n) ? order.indexOf(n) : order.length);
+    for (const name of info.layers.slice().sort((a, b) => rank(a) - rank(b))) {
       layers.push({
-        name, label: name.replace(/^filtered\//, '').replace(/_m$/, ''), kind: cm.layerKind(name),
+        name, label: name === 'elevation_m' ? 'raw h' : name.replace(/^filtered\//, '').replace(/_m$/, ''),
+        kind: cm.layerKind(name),
         unit: cm.layerKind(name) === 'elevation' ? 'm' : '',
         map: await cm.map('/api/runmap?' + cm.q({ path: runs[0], layer: name })),
       });
@@ -58,7 +72,9 @@ cm.showSample = async (body, line) => {
 
 cm.showDataset = async () => {
   const text = await cm.text('/files/manifest.jsonl');
-  const lines = text.split('\n').filter((l) => l.trim() !== '').map((l) => JSON.parse(l));
+  // Seeds are uint64: keep integers beyond 2^53 exact by reading them as strings.
+  const lines = text.split('\n').filter((l) => l.trim() !== '')
+    .map((l) => JSON.parse(l.replace(/([:[,]\s*)(\d{16,})(?=\s*[,}\]])/g, '$1"$2"')));
   const rows = lines.map((l, i) => ({ ...flatten(l), __line: l, __key: String(l.index ?? i) }));
   const keys = [...new Set(rows.flatMap((r) => Object.keys(r).filter((k) => !k.startsWith('__'))))];
   const columns = keys.map((k) => ({ key: k, label: k, digits: 4,
