@@ -1,7 +1,6 @@
 #!/usr/bin/env bash
 # Browser tests of `casmap view` (tests/view/browser_test.py) in headless Chromium on a small
-# benchmark, a small sweep, a small dataset and a live folder (until `casmap live` exists, a
-# writer here rewrites status.json and a snapshot TIFF in its documented format).
+# benchmark, a small sweep, a small dataset and a `casmap live` run.
 # Usage: scripts/test-view.sh [BUILD_DIR]   (default: build). Screenshots: BUILD_DIR/test-view/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,25 +19,20 @@ start=$(date +%s)
 "$casmap" dataset --spec config/datasets/default.yaml --out "$out/dataset" --count 3 \
     --threads 2 >/dev/null
 
-# Live: status.json rewritten atomically every 0.2 s with a rising scan count, and a snapshot
-# TIFF, as casmap live --out DIR writes them.
-mkdir -p "$out/live"
-cp "$out/bench/runs/course04_T/raw.tif" "$out/live/window_elevation.tif"
-/usr/bin/python3 - "$out/live" <<'PY' &
-import json, os, sys, time
-d = sys.argv[1]
-for k in range(600):
-    s = {"scans": 75 * k, "scans_per_s": 75.0, "latency_p99_ms": 0.18, "dropped_scans": 0,
-         "crc_errors": 0, "source": "test writer"}
-    with open(os.path.join(d, ".status.tmp"), "w") as f:
-        json.dump(s, f)
-    os.replace(os.path.join(d, ".status.tmp"), os.path.join(d, "status.json"))
-    time.sleep(0.2)
-PY
-writer=$!
-trap 'kill $writer 2>/dev/null || true' EXIT
-sleep 0.5
-
 /usr/bin/python3 tests/view/browser_test.py --casmap "$casmap" --out "$out" \
-    --bench "$out/bench" --sweep "$out/sweep" --dataset "$out/dataset" --live "$out/live"
+    --bench "$out/bench" --sweep "$out/sweep" --dataset "$out/dataset"
+
+# Live: casmap live on course 4 at the scanner's real rate (slow table: ~20 s of scans) while
+# the page polls its status.json and snapshots.
+"$casmap" live --scene scenes/courses/course04.yaml --motion T --speed 0.3 --realtime \
+    --out "$out/live" --snapshot-every-s 0.5 --duration 40 >"$out/live.log" 2>&1 &
+live=$!
+trap 'kill $live 2>/dev/null || true' EXIT
+for _ in $(seq 100); do
+    [ -f "$out/live/status.json" ] && break
+    sleep 0.1
+done
+/usr/bin/python3 tests/view/browser_test.py --casmap "$casmap" --out "$out" --live "$out/live"
+kill $live 2>/dev/null || true
+wait $live 2>/dev/null || true
 echo "test-view: passed in $(($(date +%s) - start)) s; screenshots in $out"
