@@ -237,10 +237,10 @@ def test_dataset(driver, casmap, folder, out):
         view.close()
 
 
-def test_live(driver, casmap, folder, out):
-    view = View(casmap, folder)
+def test_live(driver, casmap, folder, out, url=None):
+    view = None if url else View(casmap, folder)
     try:
-        open_page(driver, view.url)
+        open_page(driver, url or view.url)
 
         def scans():
             els = driver.find_elements(By.CSS_SELECTOR, "#live-scans .v")
@@ -254,7 +254,8 @@ def test_live(driver, casmap, folder, out):
         print("live: scan count rose from %d to %d on the page" % (first, scans()))
         driver.save_screenshot(os.path.join(out, "live.png"))
     finally:
-        view.close()
+        if view:
+            view.close()
 
 
 def main():
@@ -263,6 +264,7 @@ def main():
     parser.add_argument("--out", required=True)
     for name in ("bench", "sweep", "dataset", "live"):
         parser.add_argument("--" + name)
+    parser.add_argument("--live-url", help="a page already served (casmap live --view)")
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
     failed = 0
@@ -275,7 +277,10 @@ def main():
                 if not folder:
                     continue
                 try:
-                    test(driver, args.casmap, folder, args.out)
+                    if name == "live" and args.live_url:
+                        test(driver, args.casmap, folder, args.out, args.live_url)
+                    else:
+                        test(driver, args.casmap, folder, args.out)
                 except Exception as e:  # report every test, fail at the end
                     failed += 1
                     driver.save_screenshot(os.path.join(args.out, name + "-failed.png"))
