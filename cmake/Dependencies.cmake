@@ -41,6 +41,13 @@ if(CASMAP_WITH_MPI AND CASMAP_BUILD_SIM)
     endif()
 endif()
 
+if(CASMAP_BUILD_VIEW)
+    # cpp-httplib (Debian: libcpp-httplib-dev) as a compiled library with its pkg-config flags.
+    find_package(PkgConfig REQUIRED)
+    pkg_check_modules(httplib REQUIRED IMPORTED_TARGET cpp-httplib)
+    find_package(nlohmann_json 3 REQUIRED)
+endif()
+
 if(CASMAP_BUILD_TESTS)
     find_package(GTest REQUIRED)
     include(GoogleTest)

@@ -8,6 +8,7 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
 #include "casmap/io/atomic_file.hpp"
+#include "casmap/pipeline/bench_maps.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
 #include "casmap/pipeline/bench_wire.hpp"
 #include "casmap/pipeline/distributed.hpp"
@@ -88,7 +89,11 @@ BenchResult RunBench(const BenchOptions& options, const core::ProgressFn& progre
     result.runs.resize(n);
     result.run_names.resize(n);
     result.run_configs.resize(n);
-    if (options.sheets) {
+    result.grids.resize(n);
+    result.write_sheets = options.sheets;
+    result.write_maps = options.maps;
+    const bool keep_maps = options.sheets || options.maps;
+    if (keep_maps) {
         result.sheets.resize(n);
     }
     core::ProgressCounter counter(progress, n);
@@ -106,8 +111,8 @@ BenchResult RunBench(const BenchOptions& options, const core::ProgressFn& progre
             const MappedBenchRun run = SimulateAndMap(setup, course, trajectories[t], 3);
             const mapper::FilterParams params = RunFilterParams(run, options.filter_settings);
             BenchRunRecord record;
-            record.has_sheet = options.sheets;
-            record.run = ScoreRun(run, course, params, options.sheets ? &record.sheet : nullptr);
+            record.has_sheet = keep_maps;
+            record.run = ScoreRun(run, course, params, keep_maps ? &record.sheet : nullptr);
             record.name = RunName(course.number, tests[t]);
             record.config_yaml = run.config_yaml + FilterParamsYaml(params);
             return "R" + EncodeBenchRun(record);
@@ -125,9 +130,10 @@ BenchResult RunBench(const BenchOptions& options, const core::ProgressFn& progre
         result.runs[k] = std::move(record.run);
         result.run_names[k] = std::move(record.name);
         result.run_configs[k] = std::move(record.config_yaml);
-        if (options.sheets) {
+        if (keep_maps) {
             result.sheets[k] = std::move(record.sheet);
         }
+        result.grids[k] = setups[k % tests.size()].grid;
         counter.Advance();
     };
     (void)DistributeWork(session, items, threads, work, done);
@@ -144,7 +150,8 @@ std::string WriteBenchOutputs(const fs::path& dir, const BenchResult& result) {
     const auto start = std::chrono::steady_clock::now();
     io::EnsureDirectory(dir);
     io::EnsureDirectory(dir / "runs");
-    const bool sheets = !result.sheets.empty();
+    const bool sheets = !result.sheets.empty() && result.write_sheets;
+    const bool maps = !result.sheets.empty() && result.write_maps;
     if (sheets) {
         io::EnsureDirectory(dir / "sheets");
     }
@@ -156,6 +163,9 @@ std::string WriteBenchOutputs(const fs::path& dir, const BenchResult& result) {
             WriteSheet(dir / "sheets" / (name + ".png"), result.sheets[k],
                        "obstacle course " + std::to_string(r.course) + ", test " + r.test +
                            ": raw, ground truth and the five filters");
+        }
+        if (maps) {
+            WriteBenchMaps(dir / "runs" / name, result.sheets[k], result.grids[k]);
         }
     });
     WritePiChart(dir / "pi_chart.png", result.runs);

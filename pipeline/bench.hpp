@@ -33,7 +33,8 @@ struct BenchOptions {
     std::string sensor_path;                      // LMS 200 YAML; empty: built-in config
     std::vector<std::string> filter_settings;     // NAME=VALUE (mapper::FilterParams::Set)
     bool sheets = true;                           // keep the maps for the Fig. 7 sheets
-    int threads = 0;                              // 0 = all cores; results never depend on it
+    bool maps = false;  // also keep them for runs/<run>/*.tif + maps.json (bench_maps.hpp)
+    int threads = 0;    // 0 = all cores; results never depend on it
     /// MPI ranks to spread the runs over (distributed.hpp; rank 0 gets the result, other
     /// ranks an empty one); null: local threads only. Results never depend on it.
     const DistributedSession* session = nullptr;
@@ -44,12 +45,15 @@ struct BenchOptions {
 };
 
 struct BenchResult {
-    std::vector<BenchRun> runs;            // course-major, tests in T, TR, TP, TRP order
-    std::vector<std::string> run_names;    // "course04_T" per run
-    std::vector<std::string> run_configs;  // effective configuration YAML per run
-    std::vector<SheetMaps> sheets;         // per run when BenchOptions::sheets, else empty
-    double elapsed_s = 0.0;                // wall time of RunBench
-    int threads = 1;                       // threads used
+    std::vector<BenchRun> runs;             // course-major, tests in T, TR, TP, TRP order
+    std::vector<std::string> run_names;     // "course04_T" per run
+    std::vector<std::string> run_configs;   // effective configuration YAML per run
+    std::vector<SheetMaps> sheets;          // per run when BenchOptions::sheets or maps, else empty
+    std::vector<core::GridGeometry> grids;  // the map grid per run
+    bool write_sheets = true;               // WriteBenchOutputs draws sheets/<run>.png
+    bool write_maps = false;                // WriteBenchOutputs writes runs/<run>/ maps
+    double elapsed_s = 0.0;                 // wall time of RunBench
+    int threads = 1;                        // threads used
 };
 
 /// Validates `options`, then simulates, maps and scores every course x test. `progress` is
@@ -58,7 +62,8 @@ struct BenchResult {
                                    const core::ProgressFn& progress = {});
 
 /// Writes DIR/bench.json, pi_chart.png (Fig. 8), table2.md (Table II), poles.md,
-/// pi_table.txt, runs/<run>.yaml and, when the result has them, sheets/<run>.png (Fig. 7).
+/// pi_table.txt, runs/<run>.yaml and, when the result has them, sheets/<run>.png (Fig. 7)
+/// and runs/<run>/*.tif + maps.json (WriteBenchMaps).
 /// Creates DIR. bench.json's elapsed_s counts RunBench and the writing before it. Returns the
 /// bench.json text written.
 std::string WriteBenchOutputs(const std::filesystem::path& dir, const BenchResult& result);

@@ -312,6 +312,7 @@ BenchRun ScoreRun(const MappedBenchRun& run,
         sheet->raw = raw;
         sheet->certainty = c;
         sheet->truth = course.truth;
+        sheet->cas_classes = cas.classes;
     }
     return out;
 }

@@ -143,6 +143,11 @@ std::string EncodeBenchRun(const BenchRunRecord& record) {
             w.Put(name);
             w.Put(map);
         }
+        core::MapF classes(s.cas_classes.rows, s.cas_classes.cols);  // PixelClass as floats
+        for (std::size_t i = 0; i < classes.data.size(); ++i) {
+            classes.data[i] = static_cast<float>(s.cas_classes.data[i]);
+        }
+        w.Put(classes);
     }
     return w.Take();
 }
@@ -183,6 +188,11 @@ BenchRunRecord DecodeBenchRun(const std::string& bytes) {
         for (auto n = in.Get<std::uint64_t>(); n > 0; --n) {
             const std::string name = in.String();
             s.filtered[name] = in.Map();
+        }
+        const core::MapF classes = in.Map();
+        s.cas_classes = core::Raster<std::uint8_t>(classes.rows, classes.cols);
+        for (std::size_t i = 0; i < classes.data.size(); ++i) {
+            s.cas_classes.data[i] = static_cast<std::uint8_t>(classes.data[i]);
         }
     }
     if (!in.Done()) {

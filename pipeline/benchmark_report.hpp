@@ -48,6 +48,7 @@ struct SheetMaps {
     core::MapF certainty;
     core::MapF truth;
     std::map<std::string, core::MapF> filtered;  // keyed by BenchFilterNames()
+    core::Raster<std::uint8_t> cas_classes;      // mapper::PixelClass per cell
 };
 
 /// "CAS", "Wiener", "Averaging", "Median", "CWM" for the names above.

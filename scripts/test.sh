@@ -17,6 +17,9 @@ cmake --build build -j "$jobs"
 # fails is run once more and fails the suite if it fails again (ctest prints both runs).
 ctest --test-dir build --output-on-failure --timeout 300 --repeat until-pass:2
 
+# casmap view in headless Chromium on a small bench, sweep, dataset and live folder (~20 s).
+bash scripts/test-view.sh build
+
 # The telegram parser under libFuzzer for a bounded time (FUZZ_SECONDS, default 60).
 bash scripts/fuzz.sh
 

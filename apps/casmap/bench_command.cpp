@@ -1,9 +1,10 @@
 // casmap bench [--courses 1-16] [--tests T,TR,TP,TRP] [--seed N] [--out DIR] [--json FILE]
-//              [--rig RIG.yaml] [--sensor LMS200.yaml] [--set NAME=VALUE]... [--no-sheets]
+//              [--rig RIG.yaml] [--sensor LMS200.yaml] [--set NAME=VALUE]... [--no-sheets] [--maps]
 // The paper's benchmark (pipeline::RunBench): every course x test simulated, mapped, filtered
 // by CAS and the four baselines and scored against the exact ground truth.
 // Outputs (DIR, default out/bench): bench.json, pi_chart.png (Fig. 8), table2.md (Table II),
-// poles.md, pi_table.txt, sheets/courseNN_TEST.png (Fig. 7), runs/courseNN_TEST.yaml.
+// poles.md, pi_table.txt, sheets/courseNN_TEST.png (Fig. 7), runs/courseNN_TEST.yaml; with
+// --maps also runs/courseNN_TEST/*.tif + maps.json (pipeline/bench_maps.hpp, for casmap view).
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -26,6 +27,7 @@ struct BenchFlags {
     std::string out = "out/bench";
     std::string json;
     bool no_sheets = false;
+    bool maps = false;  // --maps: runs/<run>/*.tif + maps.json for casmap view
     pipeline::BenchOptions options;
 };
 
@@ -39,6 +41,7 @@ void RunBench(BenchFlags& flags, const CommonOptions& common) {
     opt.courses = pipeline::ParseCourses(flags.courses, "--courses");
     opt.tests = pipeline::ParseTests(flags.tests, "--tests");
     opt.sheets = !flags.no_sheets;
+    opt.maps = flags.maps;
     opt.threads = common.threads;
     opt.Validate();  // bad input exits 2 before any work
     if (!flags.json.empty()) {
@@ -85,6 +88,8 @@ void AddBenchCommand(CLI::App& app, CommonOptions& common) {
     sub->add_option("--set", opt.filter_settings,
                     "filter parameter NAME=VALUE (see casmap filter)");
     sub->add_flag("--no-sheets", flags->no_sheets, "skip the per-run Fig. 7 sheets");
+    sub->add_flag("--maps", flags->maps,
+                  "also write each run's maps as float TIFFs (runs/<run>/, for casmap view)");
     AddThreadsOption(sub, common);
     sub->callback([flags, &common] { WithFlagNames(kFlags, [&] { RunBench(*flags, common); }); });
 }

@@ -3,7 +3,7 @@
 //                [--realtime])
 //             --out DIR [--window R,C] [--m M] [--obstacle-cell-m S] [--snapshot-every-s N]
 //             [--duration S] [--scans N] [--timeout S] [--pose-tolerance-s T]
-//             [--set NAME=VALUE]...
+//             [--set NAME=VALUE]... [--view [--port P] [--host H]]
 // Live mapping with the paper's active window (pipeline/live.hpp). Parses flags, prints a
 // status line on a terminal (nothing otherwise) and one JSON line of counters at the end.
 #include <unistd.h>
@@ -26,6 +26,10 @@
 #include "casmap/pipeline/map_run.hpp"
 #ifdef CASMAP_WITH_SIM
 #include "casmap/pipeline/live_sim.hpp"
+#endif
+#ifdef CASMAP_WITH_VIEW
+#include "casmap/io/atomic_file.hpp"
+#include "casmap/view/server.hpp"
 #endif
 
 namespace casmap::app {
@@ -70,7 +74,33 @@ struct LiveOptions {
     double timeout_s = 10.0;
     double pose_tolerance_s = 0.05;
     std::vector<std::string> sets;  // CAS parameters NAME=VALUE, as casmap filter --set
+    bool view = false;              // --view: serve the live page (casmap view) while mapping
+    int port = 8080;
+    std::string host = "127.0.0.1";
 };
+
+#ifdef CASMAP_WITH_VIEW
+/// The live page of `casmap view` on DIR, served while mapping; the address goes to stderr
+/// (stdout carries the final JSON line).
+std::unique_ptr<view::Server> StartView(const LiveOptions& opt) {
+    io::EnsureDirectory(opt.out);
+    view::SiteOptions site;
+    site.dir = opt.out;
+    site.web_dir = view::FindWebDir();
+    site.kind = view::FolderKind::kLive;  // status.json comes with the first status period
+    auto server = std::make_unique<view::Server>(site, view::ServerOptions{opt.host, opt.port});
+    server->Start();
+    if (!view::IsLoopback(opt.host)) {
+        std::fprintf(stderr,
+                     "casmap live: warning: --host %s makes %s readable by anyone who can reach "
+                     "this machine\n",
+                     opt.host.c_str(), opt.out.c_str());
+    }
+    std::fprintf(stderr, "casmap live: view at %s\n", server->Url().c_str());
+    std::fflush(stderr);
+    return server;
+}
+#endif
 
 void ParseWindow(const std::string& text, mapper::ActiveWindowConfig& w) {
     const std::size_t comma = text.find(',');
@@ -207,6 +237,9 @@ void RunLiveCommand(const LiveOptions& opt, const CommonOptions& common, bool sp
     cfg.window.cas = params.cas;
     cfg.window.a = params.cas.a;
     cfg.window.cell_m = params.cas.cell_m;
+#ifdef CASMAP_WITH_VIEW
+    const std::unique_ptr<view::Server> server = opt.view ? StartView(opt) : nullptr;
+#endif
     const LiveSignals signals;
     const bool tty = ::isatty(STDERR_FILENO) != 0;
     pipeline::LiveStatusFn on_status;
@@ -265,6 +298,13 @@ void AddLiveCommand(CLI::App& app, CommonOptions& common) {
     sub->add_option("--set", opt->sets,
                     "CAS parameter NAME=VALUE (repeatable; names as casmap filter --set)");
     AddThreadsOption(sub, common);
+#ifdef CASMAP_WITH_VIEW
+    sub->add_flag("--view", opt->view, "serve the live page while mapping (see casmap view)");
+    sub->add_option("--port", opt->port, "--view: TCP port (0 = any free port)")
+        ->capture_default_str();
+    sub->add_option("--host", opt->host, "--view: bind address (not loopback: readable by others)")
+        ->capture_default_str();
+#endif
     sub->callback([opt, &common, speed] { RunLiveCommand(*opt, common, speed->count() > 0); });
 }
 

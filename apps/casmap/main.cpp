@@ -29,6 +29,9 @@ void AddRecordCommand(CLI::App& app, CommonOptions& common);
 void AddFilterCommand(CLI::App& app, CommonOptions& common);
 void AddDemoCommand(CLI::App& app, CommonOptions& common);
 void AddLiveCommand(CLI::App& app, CommonOptions& common);
+#ifdef CASMAP_WITH_VIEW
+void AddViewCommand(CLI::App& app, CommonOptions& common);
+#endif
 // END COMMAND DECLARATIONS
 }  // namespace casmap::app
 
@@ -57,6 +60,9 @@ int main(int argc, char** argv) {
     AddFilterCommand(app, common);
     AddDemoCommand(app, common);
     AddLiveCommand(app, common);
+#ifdef CASMAP_WITH_VIEW
+    AddViewCommand(app, common);
+#endif
     // END COMMAND REGISTRATION
     try {
         app.parse(argc, argv);
