@@ -16,7 +16,10 @@ cmake --build build -j "$jobs"
 # fails is run once more and fails the suite if it fails again (ctest prints both runs).
 ctest --test-dir build --output-on-failure --timeout 300 --repeat until-pass:2
 
-# The telegram parser under libFuzzer for a bounded time (FUZZ_SECONDS, default 60).
+# The suite again under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan).
+bash scripts/test-sanitize.sh
+
+# Every reader of untrusted bytes under libFuzzer, FUZZ_SECONDS (default 20) per target.
 bash scripts/fuzz.sh
 
 # The robot build: core, mapper, drivers and io without Embree, Bullet or assimp.
