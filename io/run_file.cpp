@@ -514,7 +514,7 @@ RunMaps ReadMaps(const h5::FileReader& r) {
     if (r.Has("/maps/cas_classes")) {
         std::vector<hsize_t> dims;
         core::Raster<std::uint8_t> c;
-        c.data = r.Read<std::uint8_t>("/maps/cas_classes", 2, dims);
+        c.data = r.Read<std::uint8_t>("/maps/cas_classes", 2, dims, {kGridLimit, kGridLimit});
         if (dims[0] != static_cast<hsize_t>(g.rows) || dims[1] != static_cast<hsize_t>(g.cols)) {
             throw r.Error("/maps/cas_classes", Shape(dims), "must match /maps rows x cols");
         }
