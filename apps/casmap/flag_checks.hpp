@@ -83,4 +83,22 @@ inline CLI::Validator ThreadsCheck() {
     return check.description("0 (all cores) or 1..1024");
 }
 
+/// Adds the checks above to every subcommand's flags of these names, so a new command gets
+/// them too: --seed (SeedCheck), --png (ExtensionCheck(".png")), --scans (1..10^9),
+/// --duration (finite, 0..10^6 s), --step (finite, 1e-6..10^3).
+inline void AddFlagChecks(CLI::App& app) {
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+        const auto check = [sub](const char* name, const CLI::Validator& validator) {
+            if (CLI::Option* option = sub->get_option_no_throw(name)) {
+                option->check(validator);
+            }
+        };
+        check("--seed", SeedCheck());
+        check("--png", ExtensionCheck(".png"));
+        check("--scans", WholeNumberCheck(1, 1000000000));
+        check("--duration", FiniteRangeCheck(0.0, 1e6));
+        check("--step", FiniteRangeCheck(1e-6, 1e3));
+    }
+}
+
 }  // namespace casmap::app
