@@ -6,9 +6,11 @@
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/drivers/pose_file.hpp"
+#include "casmap/drivers/pose_stream.hpp"
 
 namespace casmap::drivers {
 namespace {
@@ -27,6 +29,13 @@ std::string ErrorOf(F&& f) {
 TEST(PoseFileLimits, EndlessStreamWithoutNewlinesStopsAtTheLineLimit) {
     const std::string message = ErrorOf([] { (void)ReadPoseFile("/dev/zero"); });
     EXPECT_THAT(message, HasSubstr("/dev/zero:1: line (longer than 4096 bytes"));
+}
+
+TEST(PoseFileLimits, FollowingAnEndlessStreamStopsAtTheLineLimit) {
+    PoseFileFollower follower("/dev/zero");
+    std::vector<core::TimedPose> poses;
+    EXPECT_THAT(ErrorOf([&] { follower.Poll(poses); }),
+                HasSubstr("/dev/zero:1: line (longer than 4096 bytes"));
 }
 
 TEST(PoseFileLimits, AFolderIsNamedAsAFolder) {
