@@ -85,7 +85,7 @@ TEST(BadInputs, EveryCaseExitsTwoWithOneLineNamingTheField) {
         EXPECT_NE(r.output.find(Expand(c.expected, tmp)), std::string::npos)
             << c.name << ": expected '" << c.expected << "' in: " << shown;
         EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << c.name << ": " << shown;
-        EXPECT_LT(r.output.size(), 400U) << c.name << ": " << shown;
+        EXPECT_LT(r.output.size(), 320U) << c.name << ": " << shown;
         EXPECT_EQ(r.output.find("bad_alloc"), std::string::npos) << c.name;
         // Nothing written: a rejected command leaves its output folder as it was (empty).
         EXPECT_TRUE(fs::is_empty(tmp)) << c.name;
