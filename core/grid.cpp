@@ -3,6 +3,7 @@
 #include <string>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/limits.hpp"
 
 namespace casmap::core {
 
@@ -17,6 +18,7 @@ void GridGeometry::Validate() const {
         throw MakeInputError("grid", "rows/cols", std::to_string(rows) + "," + std::to_string(cols),
                              "must be > 0");
     }
+    limits::CheckLimit("grid", "cells (rows x cols)", size(), limits::kMaxGridCells, "grid cell");
 }
 
 }  // namespace casmap::core

@@ -2,6 +2,23 @@
 
 namespace casmap {
 namespace {
+
+// A bad value is quoted with at most this many characters: a hostile file cannot turn an
+// error message into megabytes, and a message stays one readable line.
+constexpr std::size_t kMaxQuotedChars = 48;
+
+std::string Quote(const std::string& value) {
+    std::string text;
+    for (const char c : value.substr(0, kMaxQuotedChars)) {
+        const auto u = static_cast<unsigned char>(c);
+        text += (u < 0x20 || u == 0x7f) ? '?' : c;  // keep the message on one line
+    }
+    if (value.size() > kMaxQuotedChars) {
+        text += "... (" + std::to_string(value.size()) + " characters)";
+    }
+    return text;
+}
+
 std::string Message(const std::string& where,
                     const std::string& field,
                     const std::string& value,
@@ -9,7 +26,7 @@ std::string Message(const std::string& where,
     std::string message = where.empty() ? std::string() : where + ": ";
     message += field;
     if (!value.empty()) {
-        message += " = " + value;
+        message += " = " + Quote(value);
     }
     message += " (" + rule + ")";
     return message;

@@ -2,11 +2,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <vector>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/limits.hpp"
 
 namespace casmap::drivers {
 
@@ -47,29 +49,49 @@ std::optional<core::TimedPose> ParsePoseLine(std::string line, const std::string
 }
 
 core::Trajectory ReadPoseFile(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+        throw MakeInputError(path, "pose file", "", "is a folder, not a file");
+    }
     std::ifstream in(path);
     if (!in) {
         throw MakeInputError(path, "pose file", "", "cannot be opened");
     }
+    return ReadPoses(in, path);
+}
+
+core::Trajectory ReadPoses(std::istream& in, const std::string& name) {
+    namespace limits = core::limits;
     std::vector<core::TimedPose> samples;
-    std::string line;
+    std::vector<char> buffer(limits::kMaxPoseLineBytes + 1);
     int line_no = 0;
-    while (std::getline(in, line)) {
+    // Bounded lines: an endless stream without newlines (/dev/zero) stops at the line limit,
+    // one with newlines at the pose limit.
+    while (in.getline(buffer.data(), static_cast<std::streamsize>(buffer.size())) ||
+           in.gcount() > 0) {
         ++line_no;
-        const std::string where = path + ":" + std::to_string(line_no);
-        const std::optional<core::TimedPose> p = ParsePoseLine(line, where);
-        if (!p) {
-            continue;
+        const std::string where = name + ":" + std::to_string(line_no);
+        if (in.fail() && !in.eof()) {
+            throw MakeInputError(where, "line", "",
+                                 "longer than " + std::to_string(limits::kMaxPoseLineBytes) +
+                                     " bytes, see docs/limits.md");
         }
-        if (!samples.empty() && !(p->stamp_s > samples.back().stamp_s)) {
-            char stamp[64];
-            std::snprintf(stamp, sizeof(stamp), "%.17g", p->stamp_s);
-            throw MakeInputError(where, "stamp_s", stamp, "strictly increasing");
+        const std::optional<core::TimedPose> p = ParsePoseLine(buffer.data(), where);
+        if (p) {
+            if (!samples.empty() && !(p->stamp_s > samples.back().stamp_s)) {
+                char stamp[64];
+                std::snprintf(stamp, sizeof(stamp), "%.17g", p->stamp_s);
+                throw MakeInputError(where, "stamp_s", stamp, "strictly increasing");
+            }
+            limits::CheckLimit(where, "poses", samples.size() + 1, limits::kMaxPoses, "pose");
+            samples.push_back(*p);
         }
-        samples.push_back(*p);
+        if (in.eof()) {
+            break;
+        }
     }
     if (samples.empty()) {
-        throw MakeInputError(path, "pose file", "", "holds no poses");
+        throw MakeInputError(name, "pose file", "", "holds no poses");
     }
     return core::Trajectory(std::move(samples));
 }

@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/limits.hpp"
 #include "casmap/drivers/pose_file.hpp"
 
 namespace casmap::drivers {
@@ -60,12 +61,23 @@ void PoseFileFollower::Poll(std::vector<core::TimedPose>& out) {
         line_no_ = 0;
     }
     char buf[65536];
-    for (;;) {
+    // At most 1 MiB per poll (an endless source such as /dev/zero must not keep us here), and
+    // no line longer than the pose-file line limit (docs/limits.md).
+    for (std::size_t total = 0; total < (std::size_t{1} << 20);) {
         const ssize_t n = ::read(fd_, buf, sizeof(buf));
         if (n <= 0) {
             break;
         }
         partial_.append(buf, static_cast<std::size_t>(n));
+        total += static_cast<std::size_t>(n);
+        const std::size_t last_nl = partial_.rfind('\n');
+        const std::size_t tail =
+            last_nl == std::string::npos ? partial_.size() : partial_.size() - last_nl - 1;
+        if (tail > core::limits::kMaxPoseLineBytes) {
+            throw MakeInputError(path_ + ":" + std::to_string(line_no_ + 1), "line", "",
+                                 "longer than " + std::to_string(core::limits::kMaxPoseLineBytes) +
+                                     " bytes, see docs/limits.md");
+        }
     }
     std::size_t start = 0;
     for (std::size_t nl = partial_.find('\n'); nl != std::string::npos;

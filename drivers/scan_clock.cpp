@@ -41,6 +41,20 @@ void ScanClock::Reset() {
 }
 
 double ScanClock::Stamp(double latest_s) {
+    // Sweeps are sequential, so a later scan never gets an earlier or equal stamp (run files
+    // require strictly increasing stamps). Without this, a phase estimate that moves back by
+    // more than one period (a clock step under heavy host latency) stamped a scan before its
+    // predecessor. 1 us keeps the order without moving the stamp measurably.
+    double stamp = StampOnGrid(latest_s);
+    if (stamped_any_ && !(stamp > last_stamp_s_)) {
+        stamp = last_stamp_s_ + 1e-6;
+    }
+    stamped_any_ = true;
+    last_stamp_s_ = stamp;
+    return stamp;
+}
+
+double ScanClock::StampOnGrid(double latest_s) {
     const double period = config_.period_s;
     if (count_ == 0) {
         anchor_s_ = latest_s;

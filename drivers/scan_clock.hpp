@@ -35,7 +35,8 @@ public:
     /// Forgets the phase (a reconnect: the scanner's mirror restarted).
     void Reset();
     /// `latest_s` = the latest plausible stamp of a scan (arrival - transmission - sweep), in
-    /// arrival order. Returns the synchronised stamp t0 + k * T with t0 the current estimate.
+    /// arrival order. Returns the synchronised stamp t0 + k * T with t0 the current estimate,
+    /// never earlier than or equal to the previous stamp (+1 us if the phase moved back).
     [[nodiscard]] double Stamp(double latest_s);
     /// Same, for a scan whose grid index the scanner told (the real-time scan index, unwrapped
     /// by the caller): only the phase is estimated, the lower envelope of latest_s - k T over
@@ -67,6 +68,10 @@ private:
     std::uint64_t outliers_ = 0;
     int early_run_ = 0;
     std::deque<Sample> window_;
+    double last_stamp_s_ = 0.0;  // kept across Reset: stamps increase for the whole session
+    bool stamped_any_ = false;
+
+    [[nodiscard]] double StampOnGrid(double latest_s);
 };
 
 }  // namespace casmap::drivers

@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/io/output_set.hpp"
 
 namespace casmap::io {
 namespace fs = std::filesystem;
@@ -32,12 +33,10 @@ void WriteAtomically(const fs::path& path, const std::function<void(const fs::pa
         throw MakeInputError(path.string(), "output path", "",
                              "directory " + dir.string() + " is not writable");
     }
-    // Hidden temporary name in the same directory, so the rename is atomic.
-    std::string tmp_name = ".";
-    tmp_name.append(path.filename().string());
-    tmp_name.append(".tmp");
-    tmp_name.append(std::to_string(static_cast<long>(getpid())));
-    const fs::path tmp = dir / tmp_name;
+    // Hidden temporary name in the same directory, so the rename is atomic; temporaries of
+    // killed processes are swept first.
+    RemoveStaleTemporaries(dir);
+    const fs::path tmp = TemporaryPathFor(path);
     try {
         write(tmp);
     } catch (...) {

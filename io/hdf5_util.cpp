@@ -190,6 +190,22 @@ FileReader::FileReader(std::string path) : path_(std::move(path)) {
     file_ = Id(file, H5Fclose);
 }
 
+FileReader::FileReader(const void* image, std::size_t size, std::string name)
+    : path_(std::move(name)) {
+    const Id fapl = Check(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate");
+    Check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), "H5Pset_fclose_degree");
+    // The core driver reads the file image from memory; nothing is written back.
+    Check(H5Pset_fapl_core(fapl.get(), 1 << 16, false), "H5Pset_fapl_core");
+    if (size == 0 || H5Pset_file_image(fapl.get(), const_cast<void*>(image), size) < 0) {
+        throw MakeInputError(path_, "run file", "", "not a readable HDF5 file");
+    }
+    const hid_t file = H5Fopen(path_.c_str(), H5F_ACC_RDONLY, fapl.get());
+    if (file < 0) {
+        throw MakeInputError(path_, "run file", "", "not a readable HDF5 file");
+    }
+    file_ = Id(file, H5Fclose);
+}
+
 InputError FileReader::Error(const std::string& object,
                              const std::string& value,
                              const std::string& rule) const {
@@ -240,6 +256,7 @@ void FileReader::ReadRawImpl(const std::string& dataset,
                              H5T_class_t expected,
                              hid_t memory_type,
                              std::vector<hsize_t>& dims,
+                             const std::vector<DimLimit>& limits,
                              void* (*alloc)(std::size_t, void*),
                              void* ctx) const {
     if (!Has(dataset)) {
@@ -268,8 +285,13 @@ void FileReader::ReadRawImpl(const std::string& dataset,
                     "must have " + std::to_string(rank) + " dimension(s)");
     }
     std::size_t count = 1;
-    for (const hsize_t v : dims) {
-        count *= static_cast<std::size_t>(v);
+    for (std::size_t k = 0; k < dims.size(); ++k) {
+        if (k < limits.size() && dims[k] > limits[k].max) {
+            throw Error(dataset, "shape " + ShapeText(dims),
+                        "dimension " + std::to_string(k + 1) + " (" + limits[k].what + ") limit " +
+                            std::to_string(limits[k].max) + ", see docs/limits.md");
+        }
+        count *= static_cast<std::size_t>(dims[k]);
     }
     void* buffer = alloc(count, ctx);
     if (count > 0 && H5Dread(d.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer) < 0) {
@@ -296,6 +318,9 @@ Id FileReader::OpenAttribute(const std::string& object,
 }
 
 namespace {
+// Attribute strings hold names and the effective configuration (YAML text).
+constexpr std::size_t kMaxStringBytes = std::size_t{4} << 20;
+
 hssize_t AttributeElements(hid_t attr) {
     const Id space = Check(H5Aget_space(attr), H5Sclose, "H5Aget_space");
     return H5Sget_simple_extent_npoints(space.get());
@@ -346,12 +371,17 @@ std::optional<std::uint64_t> FileReader::ReadUnsigned(const std::string& object,
 }
 
 std::optional<std::vector<double>> FileReader::ReadDoubles(const std::string& object,
-                                                           const std::string& name) const {
+                                                           const std::string& name,
+                                                           std::size_t max_count) const {
     const Id attr = OpenAttribute(object, name, H5T_FLOAT);
     if (attr.get() < 0) {
         return std::nullopt;
     }
     const hssize_t n = AttributeElements(attr.get());
+    if (n > static_cast<hssize_t>(max_count)) {
+        throw Error(AttributeWhere(object, name), std::to_string(n) + " values",
+                    "limit " + std::to_string(max_count) + ", see docs/limits.md");
+    }
     std::vector<double> values(static_cast<std::size_t>(std::max<hssize_t>(n, 0)));
     if (!values.empty()) {
         Check(H5Aread(attr.get(), H5T_NATIVE_DOUBLE, values.data()), "H5Aread " + name);
@@ -379,6 +409,10 @@ std::optional<std::string> FileReader::ReadString(const std::string& object,
     }
     // Fixed-length string (e.g. numpy bytes): read the bytes, drop NUL padding.
     const std::size_t size = H5Tget_size(type.get());
+    if (size > kMaxStringBytes) {
+        throw Error(AttributeWhere(object, name), std::to_string(size) + " bytes",
+                    "string limit " + std::to_string(kMaxStringBytes) + ", see docs/limits.md");
+    }
     std::string value(size, '\0');
     Check(H5Aread(attr.get(), type.get(), value.data()), "H5Aread " + name);
     value.resize(std::min(value.find('\0'), value.size()));

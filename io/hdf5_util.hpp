@@ -118,11 +118,19 @@ void WriteAttribute(hid_t object, const std::string& name, const std::string& va
 /// How messages name an attribute: "/scans attribute start_angle_rad".
 [[nodiscard]] std::string AttributeWhere(const std::string& object, const std::string& name);
 
+/// The largest size a dataset dimension may have, and what it counts ("scans", "beams").
+struct DimLimit {
+    std::uint64_t max = 0;
+    const char* what = "";
+};
+
 /// Read side: every failure is an InputError naming the file and the object path.
 class FileReader {
 public:
     /// Opens `path` read-only; throws InputError if it is missing or not an HDF5 file.
     explicit FileReader(std::string path);
+    /// Opens the bytes of an HDF5 file held in memory (core driver); `name` names it.
+    FileReader(const void* image, std::size_t size, std::string name);
 
     [[nodiscard]] const std::string& path() const { return path_; }
     /// True if the link `object` (an absolute path like "/scans/labels") exists.
@@ -131,13 +139,15 @@ public:
     [[nodiscard]] std::vector<std::string> Children(const std::string& group) const;
 
     /// Reads a dataset of `rank` dimensions whose element class matches T's (integer or float);
-    /// HDF5 converts the element size. `dims` receives the shape.
+    /// HDF5 converts the element size. `dims` receives the shape. Each dimension is checked
+    /// against `limits` (one per dimension) before anything is allocated.
     template <typename T>
     [[nodiscard]] std::vector<T> Read(const std::string& dataset,
                                       int rank,
-                                      std::vector<hsize_t>& dims) const {
+                                      std::vector<hsize_t>& dims,
+                                      const std::vector<DimLimit>& limits) const {
         std::vector<T> out;
-        ReadRaw(dataset, rank, Types<T>::kClass, Types<T>::Memory(), dims,
+        ReadRaw(dataset, rank, Types<T>::kClass, Types<T>::Memory(), dims, limits,
                 [&](std::size_t n) -> void* {
                     out.resize(n);
                     return out.data();
@@ -154,7 +164,8 @@ public:
     [[nodiscard]] std::optional<std::uint64_t> ReadUnsigned(const std::string& object,
                                                             const std::string& name) const;
     [[nodiscard]] std::optional<std::vector<double>> ReadDoubles(const std::string& object,
-                                                                 const std::string& name) const;
+                                                                 const std::string& name,
+                                                                 std::size_t max_count) const;
     [[nodiscard]] std::optional<std::string> ReadString(const std::string& object,
                                                         const std::string& name) const;
 
@@ -170,9 +181,10 @@ private:
                  H5T_class_t expected,
                  hid_t memory_type,
                  std::vector<hsize_t>& dims,
+                 const std::vector<DimLimit>& limits,
                  Alloc alloc) const {
         ReadRawImpl(
-            dataset, rank, expected, memory_type, dims,
+            dataset, rank, expected, memory_type, dims, limits,
             [](std::size_t n, void* ctx) { return (*static_cast<Alloc*>(ctx))(n); }, &alloc);
     }
     void ReadRawImpl(const std::string& dataset,
@@ -180,6 +192,7 @@ private:
                      H5T_class_t expected,
                      hid_t memory_type,
                      std::vector<hsize_t>& dims,
+                     const std::vector<DimLimit>& limits,
                      void* (*alloc)(std::size_t, void*),
                      void* ctx) const;
     [[nodiscard]] Id OpenAttribute(const std::string& object,

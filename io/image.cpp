@@ -5,12 +5,15 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <string_view>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/limits.hpp"
 #include "casmap/io/atomic_file.hpp"
 
 namespace casmap::io {
@@ -40,16 +43,79 @@ std::string DepthName(int depth) {
     }
 }
 
-bool HasTiffMagic(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::array<char, 4> m{};
-    if (!in.read(m.data(), 4)) {
+bool HasTiffMagic(std::string_view b) {
+    if (b.size() < 4) {
         return false;
     }
-    const bool little = m[0] == 'I' && m[1] == 'I' && (m[2] == 42 || m[2] == 43) && m[3] == 0;
-    const bool big = m[0] == 'M' && m[1] == 'M' && m[2] == 0 && (m[3] == 42 || m[3] == 43);
+    const bool little = b[0] == 'I' && b[1] == 'I' && (b[2] == 42 || b[2] == 43) && b[3] == 0;
+    const bool big = b[0] == 'M' && b[1] == 'M' && b[2] == 0 && (b[3] == 42 || b[3] == 43);
     return little || big;
 }
+
+// Reads the first image directory of a TIFF (classic or BigTIFF) for the sizes libtiff will
+// allocate: image width x length and tile width x length must stay within the pixel limit.
+class TiffHeader {
+public:
+    TiffHeader(std::string_view bytes, std::string name)
+        : b_(bytes), name_(std::move(name)), little_(bytes[0] == 'I') {}
+
+    void CheckSizes() const {
+        const bool big = Get(2, 2) == 43;
+        const std::uint64_t ifd = big ? Get(8, 8) : Get(4, 4);
+        const std::uint64_t count = big ? Get(ifd, 8) : Get(ifd, 2);
+        const std::uint64_t entry_bytes = big ? 20 : 12;
+        const std::uint64_t first = ifd + (big ? 8 : 2);
+        if (count > (b_.size() - std::min<std::uint64_t>(first, b_.size())) / entry_bytes) {
+            throw Error("TIFF header: directory entries", count, "more than the file holds");
+        }
+        std::uint64_t tags[4] = {0, 0, 0, 0};  // width 256, length 257, tile w 322, tile l 323
+        for (std::uint64_t i = 0; i < count; ++i) {
+            const std::uint64_t e = first + i * entry_bytes;
+            const std::uint64_t tag = Get(e, 2);
+            const std::uint64_t type = Get(e + 2, 2);
+            const std::uint64_t value_at = e + (big ? 12 : 8);
+            const std::uint64_t value = type == 3    ? Get(value_at, 2)
+                                        : type == 4  ? Get(value_at, 4)
+                                        : type == 16 ? Get(value_at, 8)
+                                                     : 0;
+            const int slot = tag == 256 ? 0 : tag == 257 ? 1 : tag == 322 ? 2 : tag == 323 ? 3 : -1;
+            if (slot >= 0) {
+                tags[slot] = value;
+            }
+        }
+        CheckPixels("TIFF header: width x length", tags[0], tags[1]);
+        CheckPixels("TIFF header: tile width x length", tags[2], tags[3]);
+    }
+
+private:
+    void CheckPixels(const std::string& field, std::uint64_t w, std::uint64_t h) const {
+        const std::uint64_t limit = core::limits::kMaxImagePixels;
+        if (w > limit || h > limit || w * h > limit) {
+            throw MakeInputError(name_, field, std::to_string(w) + " x " + std::to_string(h),
+                                 "pixel limit " + std::to_string(limit) + ", see docs/limits.md");
+        }
+    }
+    InputError Error(const std::string& field, std::uint64_t v, const std::string& rule) const {
+        return MakeInputError(name_, field, std::to_string(v), rule);
+    }
+    // An unsigned integer of `n` bytes at `at`, in the file's byte order.
+    std::uint64_t Get(std::uint64_t at, std::uint64_t n) const {
+        if (at > b_.size() || n > b_.size() - at) {
+            throw Error("TIFF header: offset", at, "points beyond the end of the file");
+        }
+        std::uint64_t v = 0;
+        for (std::uint64_t k = 0; k < n; ++k) {
+            const std::uint64_t byte =
+                static_cast<unsigned char>(b_[at + (little_ ? n - 1 - k : k)]);
+            v = (v << 8) | byte;
+        }
+        return v;
+    }
+
+    std::string_view b_;
+    std::string name_;
+    bool little_;
+};
 
 void WriteBytesAtomically(const fs::path& path, const std::vector<uchar>& bytes) {
     WriteAtomically(path, [&](const fs::path& tmp) {
@@ -97,26 +163,31 @@ cv::Mat Compose(const cv::Mat& map_bgr, const std::string& title, int legend_wid
 
 }  // namespace
 
-core::MapF ReadMapTiff(const fs::path& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) {
-        throw MakeInputError(path.string(), "file", "", "does not exist or is not a file");
+core::MapF DecodeMapTiff(std::string_view bytes, const std::string& name) {
+    core::limits::CheckLimit(name, "file size (bytes)", bytes.size(), core::limits::kMaxFileBytes,
+                             "TIFF file");
+    if (!HasTiffMagic(bytes)) {
+        throw MakeInputError(name, "format", "", std::string(kTiffRule) + " (not a TIFF file)");
     }
-    if (!HasTiffMagic(path)) {
-        throw MakeInputError(path.string(), "format", "",
-                             std::string(kTiffRule) + " (not a TIFF file)");
+    TiffHeader(bytes, name).CheckSizes();
+    cv::Mat image;
+    try {
+        const cv::Mat buffer(1, static_cast<int>(bytes.size()), CV_8U,
+                             const_cast<char*>(bytes.data()));
+        image = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
+    } catch (const cv::Exception& e) {
+        throw MakeInputError(name, "format", "",
+                             std::string(kTiffRule) + " (OpenCV: " + e.err.substr(0, 80) + ")");
     }
-    const cv::Mat image = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
     if (image.empty()) {
-        throw MakeInputError(path.string(), "format", "",
+        throw MakeInputError(name, "format", "",
                              std::string(kTiffRule) + " (OpenCV cannot decode it)");
     }
     if (image.channels() != 1) {
-        throw MakeInputError(path.string(), "channels", std::to_string(image.channels()),
-                             kTiffRule);
+        throw MakeInputError(name, "channels", std::to_string(image.channels()), kTiffRule);
     }
     if (image.depth() != CV_32F) {
-        throw MakeInputError(path.string(), "sample format", DepthName(image.depth()), kTiffRule);
+        throw MakeInputError(name, "sample format", DepthName(image.depth()), kTiffRule);
     }
     core::MapF map(image.rows, image.cols);
     for (int i = 0; i < image.rows; ++i) {
@@ -124,6 +195,21 @@ core::MapF ReadMapTiff(const fs::path& path) {
         std::copy(src, src + image.cols, &map.at(i, 0));
     }
     return map;
+}
+
+core::MapF ReadMapTiff(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+        throw MakeInputError(path.string(), "file", "", "does not exist or is not a file");
+    }
+    core::limits::CheckLimit(path.string(), "file size (bytes)", fs::file_size(path, ec),
+                             core::limits::kMaxFileBytes, "TIFF file");
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in.is_open()) {
+        throw MakeInputError(path.string(), "file", "", "cannot be read");
+    }
+    return DecodeMapTiff(bytes, path.string());
 }
 
 void WriteMapTiff(const fs::path& path, const core::MapF& map) {

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "casmap/core/grid.hpp"
@@ -12,7 +13,11 @@ namespace casmap::io {
 /// Reads a single-channel 32-bit float TIFF (metres, or certainty counts). Image row = map row
 /// (along-track), image column = map col. Throws InputError naming the file and the rule for
 /// a missing or unreadable file, a non-TIFF, an 8/16-bit or a multi-channel image.
+/// The image size the TIFF header declares is checked against core/limits.hpp before decoding.
 [[nodiscard]] core::MapF ReadMapTiff(const std::filesystem::path& path);
+
+/// ReadMapTiff on the bytes of a TIFF file already in memory; `name` names it in messages.
+[[nodiscard]] core::MapF DecodeMapTiff(std::string_view bytes, const std::string& name);
 
 /// Writes `map` as a single-channel 32-bit float TIFF, atomically (temporary file + rename).
 void WriteMapTiff(const std::filesystem::path& path, const core::MapF& map);

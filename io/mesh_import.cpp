@@ -5,9 +5,29 @@
 
 #include <assimp/Importer.hpp>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/limits.hpp"
+
+// Debian's assimp is built with ASSIMP_BUILD_DEBUG: a failed internal consistency check
+// (ai_assert, e.g. "numOut != pMesh->mNumFaces" in TriangulateProcess on a malformed PLY)
+// calls this function, whose library version prints and aborts the whole process. This
+// definition interposes it (the executable's symbol wins over the shared library's) and throws
+// instead; Importer::ReadFile swallows the exception and returns no scene, which becomes an
+// InputError below. Found by io/fuzz/mesh_fuzz.
+namespace Assimp {
+void aiAssertViolation(const char* failed_expression, const char* file, int line);
+void aiAssertViolation(const char* failed_expression, const char* file, int line) {
+    throw std::runtime_error(std::string("assimp consistency check failed: ") + failed_expression +
+                             " (" + file + ":" + std::to_string(line) + ")");
+}
+}  // namespace Assimp
 
 namespace casmap::io {
 namespace {
@@ -43,27 +63,94 @@ void AppendNode(const aiScene& scene,
     }
 }
 
-}  // namespace
+namespace limits = core::limits;
 
-core::MeshShape ImportMesh(const std::filesystem::path& path, const Eigen::Vector3d& scale) {
-    const std::string name = path.string();
+// The element counts a PLY header declares ("element vertex 4000000000"): assimp reserves
+// memory for them before reading a single vertex. Each element takes at least one byte of the
+// file, so a count above the file size is a lie as well.
+void CheckPlyHeader(std::string_view head, std::uint64_t file_bytes, const std::string& name) {
+    std::istringstream lines{std::string(head)};
+    std::string line;
+    while (std::getline(lines, line) && line.rfind("end_header", 0) != 0) {
+        std::istringstream words(line);
+        std::string keyword;
+        std::string element;
+        std::string count_text;
+        if (!(words >> keyword >> element >> count_text) || keyword != "element") {
+            continue;
+        }
+        const std::string field = "PLY header: element " + element.substr(0, 32);
+        char* end = nullptr;
+        const unsigned long long count = std::strtoull(count_text.c_str(), &end, 10);
+        if (count_text.empty() || count_text[0] == '-' || end == nullptr || *end != '\0') {
+            throw MakeInputError(name, field, count_text, "must be a count");
+        }
+        limits::CheckLimit(name, field, count, limits::kMaxMeshElements, "mesh element");
+        if (count > file_bytes) {
+            throw MakeInputError(
+                name, field, count_text,
+                "more elements than the file has bytes (" + std::to_string(file_bytes) + ")");
+        }
+    }
+}
+
+// Binary STL: an 80-byte header, a 32-bit triangle count, 50 bytes per triangle.
+void CheckStlHeader(std::string_view head, std::uint64_t file_bytes, const std::string& name) {
+    if (head.size() < 84 || head.substr(0, 5) == "solid") {
+        return;  // ASCII STL: grows with the file
+    }
+    std::uint32_t count = 0;
+    std::memcpy(&count, head.data() + 80, sizeof(count));  // little-endian on every target we run
+    limits::CheckLimit(name, "STL header: triangle count", count, limits::kMaxMeshElements,
+                       "mesh element");
+    if (84 + 50 * static_cast<std::uint64_t>(count) > file_bytes) {
+        throw MakeInputError(name, "STL header: triangle count", std::to_string(count),
+                             "needs " +
+                                 std::to_string(84 + 50 * static_cast<std::uint64_t>(count)) +
+                                 " bytes, the file has " + std::to_string(file_bytes));
+    }
+}
+
+void CheckHeader(std::string_view head,
+                 std::uint64_t file_bytes,
+                 const std::string& hint,
+                 const std::string& name) {
+    limits::CheckLimit(name, "file size (bytes)", file_bytes, limits::kMaxFileBytes, "mesh file");
+    if (head.substr(0, 3) == "ply") {
+        CheckPlyHeader(head, file_bytes, name);
+    } else if (hint == "stl" || hint == "STL") {
+        CheckStlHeader(head, file_bytes, name);
+    }
+}
+
+constexpr unsigned int kPostProcess =
+    aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+
+void CheckScale(const std::string& name, const Eigen::Vector3d& scale) {
     for (int i = 0; i < 3; ++i) {
         if (!(scale[i] > 0.0) || !std::isfinite(scale[i])) {
             throw MakeInputError(name, "scale", std::to_string(scale[i]), "must be > 0");
         }
     }
-    if (!std::filesystem::is_regular_file(path)) {
-        throw MakeInputError(name, "mesh", "", "file not found");
-    }
-    Assimp::Importer importer;
-    // Triangulate polygons; SortByPType separates points/lines; no unit or axis conversion, so
-    // `scale` alone maps file units to metres.
-    const aiScene* scene = importer.ReadFile(
-        name, aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure);
+}
+
+// Converts what assimp read; counts are checked before our own vectors grow.
+core::MeshShape ToShape(const aiScene* scene,
+                        const Assimp::Importer& importer,
+                        const std::string& name,
+                        const Eigen::Vector3d& scale) {
     if (scene == nullptr || scene->mRootNode == nullptr) {
         throw MakeInputError(name, "mesh", "",
                              std::string("unreadable: ") + importer.GetErrorString());
     }
+    std::uint64_t vertices = 0;
+    std::uint64_t faces = 0;
+    for (unsigned int m = 0; m < scene->mNumMeshes; ++m) {
+        vertices += scene->mMeshes[m]->mNumVertices;
+        faces += scene->mMeshes[m]->mNumFaces;
+    }
+    limits::CheckLimit(name, "mesh vertices", vertices, limits::kMaxMeshElements, "mesh element");
+    limits::CheckLimit(name, "mesh faces", faces, limits::kMaxMeshElements, "mesh element");
     core::MeshShape shape;
     shape.source_path = name;
     AppendNode(*scene, *scene->mRootNode, aiMatrix4x4(), scale, shape);
@@ -76,6 +163,51 @@ core::MeshShape ImportMesh(const std::filesystem::path& path, const Eigen::Vecto
         }
     }
     return shape;
+}
+
+}  // namespace
+
+core::MeshShape ImportMeshFromMemory(std::string_view bytes,
+                                     const std::string& format_hint,
+                                     const std::string& name,
+                                     const Eigen::Vector3d& scale) {
+    CheckScale(name, scale);
+    CheckHeader(bytes.substr(0, 65536), bytes.size(), format_hint, name);
+    Assimp::Importer importer;
+    const aiScene* scene = nullptr;
+    try {
+        scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), kPostProcess,
+                                            format_hint.c_str());
+    } catch (const std::exception& e) {
+        throw MakeInputError(name, "mesh", "", std::string("unreadable: ") + e.what());
+    }
+    return ToShape(scene, importer, name, scale);
+}
+
+core::MeshShape ImportMesh(const std::filesystem::path& path, const Eigen::Vector3d& scale) {
+    const std::string name = path.string();
+    CheckScale(name, scale);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        throw MakeInputError(name, "mesh", "", "file not found");
+    }
+    std::string head(65536, '\0');
+    std::ifstream in(path, std::ios::binary);
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    std::string hint = path.extension().string();
+    hint = hint.empty() ? hint : hint.substr(1);
+    CheckHeader(head, std::filesystem::file_size(path, ec), hint, name);
+    Assimp::Importer importer;
+    // Triangulate polygons; SortByPType separates points/lines; no unit or axis conversion, so
+    // `scale` alone maps file units to metres.
+    const aiScene* scene = nullptr;
+    try {
+        scene = importer.ReadFile(name, kPostProcess);
+    } catch (const std::exception& e) {
+        throw MakeInputError(name, "mesh", "", std::string("unreadable: ") + e.what());
+    }
+    return ToShape(scene, importer, name, scale);
 }
 
 }  // namespace casmap::io

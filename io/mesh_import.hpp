@@ -5,6 +5,8 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <string>
+#include <string_view>
 
 #include "casmap/core/scene.hpp"
 
@@ -15,7 +17,16 @@ namespace casmap::io {
 /// to metres). Points and lines are ignored; polygons are triangulated.
 /// Throws InputError "<path>: mesh (<rule>)" when the file is missing, unreadable, holds no
 /// triangle, or has a non-finite vertex. `scale` must be positive and finite (checked).
+/// Element counts declared in a header (PLY `element` lines, binary STL triangle count) and the
+/// file size are checked against core/limits.hpp before assimp allocates anything.
 [[nodiscard]] core::MeshShape ImportMesh(const std::filesystem::path& path,
                                          const Eigen::Vector3d& scale);
+
+/// ImportMesh on bytes in memory; `format_hint` is the file extension ("ply", "stl", "obj", ...)
+/// and `name` names the bytes in messages. The same checks apply.
+[[nodiscard]] core::MeshShape ImportMeshFromMemory(std::string_view bytes,
+                                                   const std::string& format_hint,
+                                                   const std::string& name,
+                                                   const Eigen::Vector3d& scale);
 
 }  // namespace casmap::io

@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/limits.hpp"
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/hdf5_util.hpp"
 
@@ -15,6 +16,11 @@ using h5::Id;
 
 constexpr std::int32_t kFormatVersion = 1;
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+namespace limits = core::limits;
+const h5::DimLimit kScansLimit{limits::kMaxScans, "scans"};
+const h5::DimLimit kBeamsLimit{limits::kMaxBeamsPerScan, "beams per scan"};
+const h5::DimLimit kPosesLimit{limits::kMaxPoses, "poses"};
+const h5::DimLimit kGridLimit{limits::kMaxGridCells, "grid cells"};
 
 std::string_view ModeName(core::RangeMode mode) {
     switch (mode) {
@@ -265,7 +271,7 @@ std::string Shape(const std::vector<hsize_t>& dims) {
 template <typename T>
 std::vector<T> ReadBeams(const h5::FileReader& r, const std::string& name, hsize_t n, hsize_t b) {
     std::vector<hsize_t> dims;
-    std::vector<T> values = r.Read<T>(name, 2, dims);
+    std::vector<T> values = r.Read<T>(name, 2, dims, {kScansLimit, kBeamsLimit});
     if (dims[0] != n || dims[1] != b) {
         throw r.Error(name, Shape(dims),
                       "must be N x B = " + std::to_string(n) + " x " + std::to_string(b) +
@@ -283,12 +289,24 @@ double RequiredDouble(const h5::FileReader& r, const std::string& object, const 
     return *v;
 }
 
-core::Scan ReadScanGeometry(const h5::FileReader& r, std::size_t beams) {
+/// Reads the shared scan geometry; `any_beam` false (an empty run) skips the range rules.
+core::Scan ReadScanGeometry(const h5::FileReader& r, std::size_t beams, bool any_beam) {
     core::Scan proto;
     proto.start_angle_rad = RequiredDouble(r, "/scans", "start_angle_rad");
     proto.angle_step_rad = RequiredDouble(r, "/scans", "angle_step_rad");
     proto.beam_period_s = RequiredDouble(r, "/scans", "beam_period_s");
-    if (auto offsets = r.ReadDoubles("/scans", "beam_time_offset_s")) {
+    if (!any_beam) {
+        return proto;  // an empty run (no scans) has no scan geometry to check
+    }
+    if (!(proto.angle_step_rad > 0.0 && proto.angle_step_rad <= 0.1)) {
+        throw r.Error(h5::AttributeWhere("/scans", "angle_step_rad"),
+                      std::to_string(proto.angle_step_rad), "allowed: 0 < step <= 0.1 rad");
+    }
+    if (!(proto.beam_period_s >= 0.0 && proto.beam_period_s <= 0.01)) {
+        throw r.Error(h5::AttributeWhere("/scans", "beam_period_s"),
+                      std::to_string(proto.beam_period_s), "allowed: 0..0.01 s");
+    }
+    if (auto offsets = r.ReadDoubles("/scans", "beam_time_offset_s", limits::kMaxBeamsPerScan)) {
         if (offsets->size() != beams) {
             throw r.Error(h5::AttributeWhere("/scans", "beam_time_offset_s"),
                           std::to_string(offsets->size()) + " values",
@@ -332,9 +350,10 @@ std::string BeamIndex(const std::string& dataset, std::size_t k, std::size_t bea
 
 void ReadScans(const h5::FileReader& r, RunData& data) {
     std::vector<hsize_t> dims;
-    const std::vector<double> stamps = r.Read<double>("/scans/stamp_s", 1, dims);
+    const std::vector<double> stamps = r.Read<double>("/scans/stamp_s", 1, dims, {kScansLimit});
     const hsize_t n = dims[0];
-    const std::vector<float> ranges = r.Read<float>("/scans/ranges_m", 2, dims);
+    const std::vector<float> ranges =
+        r.Read<float>("/scans/ranges_m", 2, dims, {kScansLimit, kBeamsLimit});
     if (dims[0] != n) {
         throw r.Error("/scans/ranges_m", Shape(dims),
                       "needs one row per entry of /scans/stamp_s (" + std::to_string(n) + ")");
@@ -343,7 +362,7 @@ void ReadScans(const h5::FileReader& r, RunData& data) {
     const auto raw = ReadBeams<std::uint16_t>(r, "/scans/raw", n, b);
     const auto status = ReadBeams<std::uint8_t>(r, "/scans/status", n, b);
     const std::size_t beams = static_cast<std::size_t>(b);
-    const core::Scan proto = ReadScanGeometry(r, beams);
+    const core::Scan proto = ReadScanGeometry(r, beams, n > 0 && beams > 0);
     data.format = ReadFormat(r);
     data.scans.assign(static_cast<std::size_t>(n), proto);
     for (std::size_t i = 0; i < data.scans.size(); ++i) {
@@ -351,6 +370,11 @@ void ReadScans(const h5::FileReader& r, RunData& data) {
         if (!std::isfinite(stamps[i])) {
             throw r.Error("/scans/stamp_s[" + std::to_string(i) + "]", std::to_string(stamps[i]),
                           "must be finite");
+        }
+        if (i > 0 && !(stamps[i] > stamps[i - 1])) {
+            throw r.Error(
+                "/scans/stamp_s[" + std::to_string(i) + "]", std::to_string(stamps[i]),
+                "stamps must increase strictly (previous " + std::to_string(stamps[i - 1]) + ")");
         }
         s.stamp_s = stamps[i];
         s.beams.resize(beams);
@@ -364,9 +388,9 @@ void ReadScans(const h5::FileReader& r, RunData& data) {
             beam.status = static_cast<core::BeamStatus>(status[k]);
             beam.raw = raw[k];
             beam.range_m = beam.status == core::BeamStatus::kOk ? ranges[k] : kNaN;
-            if (beam.status == core::BeamStatus::kOk && !std::isfinite(ranges[k])) {
+            if (beam.status == core::BeamStatus::kOk && !(ranges[k] >= 0.0F && ranges[k] <= 1e3F)) {
                 throw r.Error(BeamIndex("/scans/ranges_m", k, beams), std::to_string(ranges[k]),
-                              "a beam with status 0 (ok) needs a finite range");
+                              "a beam with status 0 (ok) needs a range in 0..1000 m");
             }
         }
     }
@@ -403,13 +427,15 @@ void ReadScans(const h5::FileReader& r, RunData& data) {
 
 void ReadPoses(const h5::FileReader& r, RunData& data) {
     std::vector<hsize_t> dims;
-    const std::vector<double> stamps = r.Read<double>("/poses/stamp_s", 1, dims);
+    const std::vector<double> stamps = r.Read<double>("/poses/stamp_s", 1, dims, {kPosesLimit});
     const hsize_t p = dims[0];
-    const std::vector<double> xyz = r.Read<double>("/poses/xyz_m", 2, dims);
+    const std::vector<double> xyz =
+        r.Read<double>("/poses/xyz_m", 2, dims, {kPosesLimit, {3, "x, y, z"}});
     if (dims[0] != p || dims[1] != 3) {
         throw r.Error("/poses/xyz_m", Shape(dims), "must be P x 3 with P = " + std::to_string(p));
     }
-    const std::vector<double> quat = r.Read<double>("/poses/quat_xyzw", 2, dims);
+    const std::vector<double> quat =
+        r.Read<double>("/poses/quat_xyzw", 2, dims, {kPosesLimit, {4, "x, y, z, w"}});
     if (dims[0] != p || dims[1] != 4) {
         throw r.Error("/poses/quat_xyzw", Shape(dims),
                       "must be P x 4 with P = " + std::to_string(p));
@@ -440,7 +466,7 @@ core::MapF ReadLayer(const h5::FileReader& r,
                      const core::GridGeometry& g) {
     std::vector<hsize_t> dims;
     core::MapF map;
-    map.data = r.Read<float>(name, 2, dims);
+    map.data = r.Read<float>(name, 2, dims, {kGridLimit, kGridLimit});
     if (dims[0] != static_cast<hsize_t>(g.rows) || dims[1] != static_cast<hsize_t>(g.cols)) {
         throw r.Error(name, Shape(dims),
                       "must match /maps rows x cols = " + std::to_string(g.rows) + " x " +
@@ -488,7 +514,7 @@ RunMaps ReadMaps(const h5::FileReader& r) {
     if (r.Has("/maps/cas_classes")) {
         std::vector<hsize_t> dims;
         core::Raster<std::uint8_t> c;
-        c.data = r.Read<std::uint8_t>("/maps/cas_classes", 2, dims);
+        c.data = r.Read<std::uint8_t>("/maps/cas_classes", 2, dims, {kGridLimit, kGridLimit});
         if (dims[0] != static_cast<hsize_t>(g.rows) || dims[1] != static_cast<hsize_t>(g.cols)) {
             throw r.Error("/maps/cas_classes", Shape(dims), "must match /maps rows x cols");
         }
@@ -522,9 +548,8 @@ void WriteRunFile(const fs::path& path, const RunData& data) {
     });
 }
 
-RunData ReadRunFile(const fs::path& path) {
-    const auto lock = h5::LibraryLock();
-    const h5::FileReader r(path.string());
+namespace {
+RunData ReadRun(const h5::FileReader& r) {
     CheckVersion(r);
     RunData data;
     data.seed = r.ReadUnsigned("/", "seed");
@@ -533,6 +558,19 @@ RunData ReadRunFile(const fs::path& path) {
     ReadPoses(r, data);
     data.maps = ReadMaps(r);
     return data;
+}
+}  // namespace
+
+RunData ReadRunFile(const fs::path& path) {
+    const auto lock = h5::LibraryLock();
+    const h5::FileReader r(path.string());
+    return ReadRun(r);
+}
+
+RunData ReadRunFileImage(std::string_view bytes, const std::string& name) {
+    const auto lock = h5::LibraryLock();
+    const h5::FileReader r(bytes.data(), bytes.size(), name);
+    return ReadRun(r);
 }
 
 RunMaps ReadRunMaps(const fs::path& path) {

@@ -10,6 +10,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "casmap/core/grid.hpp"
@@ -55,7 +56,11 @@ void WriteRunFile(const std::filesystem::path& path, const RunData& data);
 /// Reads and validates a run file. Throws InputError naming the file, the dataset or
 /// attribute, and the rule when the file is missing, not HDF5, or has a wrong shape or type.
 /// Ranges of beams whose status is not kOk are NaN.
+/// Sizes (scans, beams, poses, map cells) are checked against core/limits.hpp before reading.
 [[nodiscard]] RunData ReadRunFile(const std::filesystem::path& path);
+
+/// ReadRunFile on the bytes of a run file held in memory (HDF5 core driver); `name` names it.
+[[nodiscard]] RunData ReadRunFileImage(std::string_view bytes, const std::string& name);
 
 /// Reads only the maps (and their grid) of a run file.
 [[nodiscard]] RunMaps ReadRunMaps(const std::filesystem::path& path);

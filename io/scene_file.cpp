@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/limits.hpp"
 #include "casmap/core/pose.hpp"
 #include "casmap/io/mesh_import.hpp"
 #include "casmap/io/yaml_util.hpp"
@@ -22,7 +23,7 @@ std::string Describe(const YAML::Node& node) {
     }
     if (node.IsSequence()) {
         std::string text = "[";
-        for (std::size_t i = 0; i < node.size(); ++i) {
+        for (std::size_t i = 0; i < node.size() && text.size() < 64; ++i) {
             text += (i == 0 ? "" : ", ") + Describe(node[i]);
         }
         return text + "]";
@@ -47,10 +48,16 @@ double ReadNumber(const std::string& file, const YAML::Node& node, const std::st
     return value;
 }
 
+// Sizes and positions beyond this many metres are typos (a scene is a test course, not a
+// continent) and would make the ground-truth grid and the ray caster lose all precision.
+const std::string kExtentRule =
+    "allowed: 0 < size <= " + std::to_string(static_cast<int>(core::limits::kMaxSceneExtentM)) +
+    " m, see docs/limits.md";
+
 double ReadPositive(const std::string& file, const YAML::Node& node, const std::string& field) {
     const double value = ReadNumber(file, node, field);
-    if (!(value > 0.0)) {
-        throw MakeInputError(Where(file, node), field, Describe(node), "allowed: > 0");
+    if (!(value > 0.0 && value <= core::limits::kMaxSceneExtentM)) {
+        throw MakeInputError(Where(file, node), field, Describe(node), kExtentRule);
     }
     return value;
 }
@@ -85,10 +92,10 @@ core::Shape ReadBox(const std::string& file, const YAML::Node& node, const std::
     }
     const std::vector<double> v = ReadNumbers(file, node["size_m"], field + ".size_m", 3);
     for (std::size_t i = 0; i < 3; ++i) {
-        if (!(v[i] > 0.0)) {
+        if (!(v[i] > 0.0 && v[i] <= core::limits::kMaxSceneExtentM)) {
             throw MakeInputError(Where(file, node["size_m"][i]),
                                  field + ".size_m[" + std::to_string(i) + "]",
-                                 Describe(node["size_m"][i]), "allowed: > 0");
+                                 Describe(node["size_m"][i]), kExtentRule);
         }
     }
     return core::BoxShape{Eigen::Vector3d(v[0], v[1], v[2])};
@@ -159,6 +166,12 @@ core::Pose ReadPose(const std::string& file, const YAML::Node& node, const std::
     } else {
         throw MakeInputError(Where(file, node), field, Describe(node),
                              "must be {xyz_m: [3], rpy_deg: [3]} or a list of 6 numbers");
+    }
+    if (xyz.cwiseAbs().maxCoeff() > core::limits::kMaxSceneExtentM) {
+        throw MakeInputError(Where(file, node), field, Describe(node),
+                             "position within +-" +
+                                 std::to_string(static_cast<int>(core::limits::kMaxSceneExtentM)) +
+                                 " m, see docs/limits.md");
     }
     return core::PoseFromXyzRpy(xyz, rpy_deg * (std::numbers::pi / 180.0));
 }

@@ -17,8 +17,12 @@ namespace casmap::io {
 /// Where a node sits: "file:line:col" (1-based), or just the file when the mark is unknown.
 [[nodiscard]] std::string Where(const std::string& file, const YAML::Node& node);
 
-/// Loads a YAML file; throws InputError for a missing file or a syntax error (with line:col).
+/// Loads a YAML file; throws InputError for a missing file, a syntax error (with line:col), a
+/// duplicate key, or a file beyond the limits of core/limits.hpp (size, nodes, depth).
 [[nodiscard]] YAML::Node LoadYamlFile(const std::string& file);
+
+/// LoadYamlFile on text already in memory; `file` names it in messages.
+[[nodiscard]] YAML::Node LoadYamlText(const std::string& text, const std::string& file);
 
 /// Throws InputError if `map` has a key not in `allowed` (typos are errors, not ignored).
 void RejectUnknownKeys(const std::string& file,

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/limits.hpp"
 #include "casmap/rig/table.hpp"
 
 namespace casmap::rig {
@@ -73,7 +74,33 @@ std::optional<ConfigViolation> CheckCourse(const CourseConfig& c) {
                        c.lateral_offset_m, "must be finite, |y| < 100 m")) {
         return v;
     }
-    return Check(c.width_m > 0.0, "table.course.width_m", c.width_m, "must be > 0");
+    if (auto v =
+            Check(c.end_x_m - c.start_x_m <= core::limits::kMaxCourseLengthM,
+                  "table.course.end_x_m", c.end_x_m,
+                  "course length end_x_m - start_x_m limit " +
+                      FormatNumber(core::limits::kMaxCourseLengthM) + " m, see docs/limits.md")) {
+        return v;
+    }
+    return Check(c.width_m > 0.0 && c.width_m <= core::limits::kMaxCourseLengthM,
+                 "table.course.width_m", c.width_m,
+                 "allowed: 0 < w <= " + FormatNumber(core::limits::kMaxCourseLengthM) + " m");
+}
+
+// The run's length in time and in poses bounds what the rig allocates (docs/limits.md).
+std::optional<ConfigViolation> CheckRunSize(const TableConfig& c) {
+    const double duration_s =
+        (c.course.end_x_m - c.course.start_x_m) / c.speed_m_s + c.speed_ramp_s;
+    if (auto v =
+            Check(duration_s <= core::limits::kMaxRunDurationS, "table.speed_m_s", c.speed_m_s,
+                  "the course takes " + FormatNumber(duration_s) + " s, limit " +
+                      FormatNumber(core::limits::kMaxRunDurationS) + " s, see docs/limits.md")) {
+        return v;
+    }
+    const double poses = duration_s * c.physics_rate_hz / c.output_decimation;
+    return Check(poses <= static_cast<double>(core::limits::kMaxPoses), "table.output_decimation",
+                 c.output_decimation,
+                 FormatNumber(poses) + " poses, limit " + std::to_string(core::limits::kMaxPoses) +
+                     ", see docs/limits.md");
 }
 
 std::optional<ConfigViolation> CheckMechanism(const TableConfig& c) {
@@ -169,6 +196,9 @@ std::optional<ConfigViolation> TableConfig::FirstViolation() const {
         return v;
     }
     if (auto v = CheckCourse(course)) {
+        return v;
+    }
+    if (auto v = CheckRunSize(*this)) {
         return v;
     }
     if (auto v = CheckProfile(roll_profile, "table.roll_profile", -TableLimits::kMaxAbsRollDeg,

@@ -1,6 +1,7 @@
 // VehicleConfig validation (no Bullet here).
 #include <cmath>
 
+#include "casmap/core/limits.hpp"
 #include "casmap/rig/vehicle.hpp"
 
 namespace casmap::rig {
@@ -63,6 +64,29 @@ std::optional<ConfigViolation> VehicleConfig::FirstViolation() const {
         if (!r.ok || !std::isfinite(r.value)) {
             return ConfigViolation{r.field, FormatNumber(r.value), r.rule};
         }
+    }
+    // The run's length in space, time and poses bounds what the rig allocates
+    // (docs/limits.md).
+    namespace limits = core::limits;
+    const double length_m = end_x_m - start_xy_m.x();
+    if (length_m > limits::kMaxCourseLengthM) {
+        return ConfigViolation{"vehicle.end_x_m", FormatNumber(end_x_m),
+                               "course length end_x_m - start_xy_m[0] limit " +
+                                   FormatNumber(limits::kMaxCourseLengthM) +
+                                   " m, see docs/limits.md"};
+    }
+    const double duration_s = length_m / speed_m_s + speed_ramp_s + settle_s;
+    if (duration_s > limits::kMaxRunDurationS) {
+        return ConfigViolation{"vehicle.speed_m_s", FormatNumber(speed_m_s),
+                               "the course takes " + FormatNumber(duration_s) + " s, limit " +
+                                   FormatNumber(limits::kMaxRunDurationS) +
+                                   " s, see docs/limits.md"};
+    }
+    const double poses = duration_s * physics_rate_hz / output_decimation;
+    if (poses > static_cast<double>(limits::kMaxPoses)) {
+        return ConfigViolation{"vehicle.output_decimation", std::to_string(output_decimation),
+                               FormatNumber(poses) + " poses, limit " +
+                                   std::to_string(limits::kMaxPoses) + ", see docs/limits.md"};
     }
     return std::nullopt;
 }

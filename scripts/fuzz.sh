@@ -1,11 +1,18 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer target for the LMS 200 telegram parser with clang (separate build-fuzz
-# directory, ASan + UBSan) and runs it for a bounded time (FUZZ_SECONDS, default 60), then
-# prints how many inputs it executed. Exit status non-zero if the fuzzer found a crash.
+# Builds the libFuzzer targets with clang (separate build-fuzz directory, ASan + UBSan, libraries
+# instrumented for coverage) and runs each for a bounded time from its seed corpus, then prints
+# how many inputs each executed. Exit status non-zero if any target found a crash, a sanitizer
+# report, a leak, an uncaught exception or a runaway allocation (> 2 GB).
+#   FUZZ_SECONDS   seconds per target (default 20; 8 targets -> about 3 minutes)
+#   FUZZ_TARGETS   space-separated subset (default: all)
+# Long runs: docs/fuzzing.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-seconds=${FUZZ_SECONDS:-60}
+seconds=${FUZZ_SECONDS:-20}
+all="telegram_parser_fuzz pose_file_fuzz run_file_fuzz tiff_map_fuzz scene_yaml_fuzz \
+sensor_yaml_fuzz rig_yaml_fuzz mesh_fuzz"
+targets=${FUZZ_TARGETS:-$all}
 if ! command -v clang++ >/dev/null 2>&1; then
     echo "fuzz: clang++ not found; skipped"
     exit 0
@@ -13,24 +20,50 @@ fi
 
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-    -DCASMAP_BUILD_SIM=OFF -DCASMAP_BUILD_TESTS=OFF -DCASMAP_BUILD_FUZZ=ON >/dev/null
-cmake --build build-fuzz --target telegram_parser_fuzz -j "$(nproc)"
+    -DCASMAP_BUILD_SIM=ON -DCASMAP_BUILD_TESTS=OFF -DCASMAP_BUILD_FUZZ=ON >/dev/null
+# shellcheck disable=SC2086
+cmake --build build-fuzz --target $targets -j "$(nproc)"
 
-# Seed corpus: the real 0xB0 capture and the manual's golden telegrams.
-corpus=build-fuzz/fuzz-corpus/telegram_parser
-mkdir -p "$corpus"
-tr -d ' \n' < tests/data/drivers/b0_real_361_mm.hex | xxd -r -p > "$corpus/seed_b0_real"
-printf '\x00\x06\x02\x80\x03\x00\xa0\x00\x10\x16\x0a' > "$corpus/seed_ack_a0"
-printf '\x01\x02\x00\x05\x00\x3b\xb4\x00\x64\x00\x97\x49' > "$corpus/seed_variant"
+# Seed corpora: tests/data/fuzz/<target without _fuzz>/, copied so the repository stays clean.
+seeds() {
+    local name=$1 corpus=$2
+    rm -rf "$corpus"
+    mkdir -p "$corpus"
+    if [ "$name" = telegram_parser ]; then
+        # The real 0xB0 capture and the manual's golden telegrams.
+        tr -d ' \n' < tests/data/drivers/b0_real_361_mm.hex | xxd -r -p > "$corpus/seed_b0_real"
+        printf '\x00\x06\x02\x80\x03\x00\xa0\x00\x10\x16\x0a' > "$corpus/seed_ack_a0"
+        printf '\x01\x02\x00\x05\x00\x3b\xb4\x00\x64\x00\x97\x49' > "$corpus/seed_variant"
+    else
+        cp tests/data/fuzz/"$name"/* "$corpus"/
+    fi
+}
 
-log=build-fuzz/telegram_parser_fuzz.log
-status=0
-./build-fuzz/drivers/fuzz/telegram_parser_fuzz -max_total_time="$seconds" -print_final_stats=1 \
-    -artifact_prefix=build-fuzz/ "$corpus" >"$log" 2>&1 || status=$?
-runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || true)
-if [ "$status" -ne 0 ]; then
-    tail -n 40 "$log"
-    echo "fuzz: telegram_parser_fuzz FAILED after ${runs:-?} executions (see $log)"
-    exit "$status"
-fi
-echo "fuzz: telegram_parser_fuzz ran ${runs:-?} executions in ${seconds} s without a crash"
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan-suppressions.txt}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
+failed=0
+for target in $targets; do
+    name=${target%_fuzz}
+    corpus=build-fuzz/fuzz-corpus/$name
+    seeds "$name" "$corpus"
+    binary=$(find build-fuzz -type f -name "$target" -perm -u+x | head -n 1)
+    log=build-fuzz/$target.log
+    status=0
+    "$binary" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -timeout_exitcode=77 \
+        -print_final_stats=1 -artifact_prefix="build-fuzz/$target-" "$corpus" >"$log" 2>&1 ||
+        status=$?
+    runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || true)
+    if [ "$status" -eq 77 ] && grep -q 'in H5HG_read' "$log"; then
+        # Known HDF5 1.10 hang on a corrupt global heap (docs/fuzzing.md, "Known findings"):
+        # inside libhdf5, reported, not a casmap failure.
+        echo "fuzz: $target stopped after ${runs:-?} executions on the known HDF5 global-heap hang"
+    elif [ "$status" -ne 0 ]; then
+        tail -n 40 "$log"
+        echo "fuzz: $target FAILED after ${runs:-?} executions (see $log)"
+        failed=1
+    else
+        echo "fuzz: $target ran ${runs:-?} executions in ${seconds} s without a finding"
+    fi
+done
+exit "$failed"

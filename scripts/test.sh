@@ -20,7 +20,10 @@ ctest --test-dir build --output-on-failure --timeout 300 --repeat until-pass:2
 # casmap view in headless Chromium on a small bench, sweep, dataset and live folder (~20 s).
 bash scripts/test-view.sh build
 
-# The telegram parser under libFuzzer for a bounded time (FUZZ_SECONDS, default 60).
+# The suite again under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan).
+bash scripts/test-sanitize.sh
+
+# Every reader of untrusted bytes under libFuzzer, FUZZ_SECONDS (default 20) per target.
 bash scripts/fuzz.sh
 
 # The robot build: core, mapper, drivers and io without Embree, Bullet or assimp.

@@ -13,7 +13,9 @@
 #include "apps/casmap/commands.hpp"
 #include "apps/casmap/flag_names.hpp"
 #include "apps/casmap/progress_bar.hpp"
+#include "casmap/core/input_error.hpp"
 #include "casmap/io/atomic_file.hpp"
+#include "casmap/io/output_set.hpp"
 #include "casmap/pipeline/bench.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
 #include "casmap/pipeline/distributed.hpp"
@@ -44,12 +46,27 @@ void RunBench(BenchFlags& flags, const CommonOptions& common) {
     opt.maps = flags.maps;
     opt.threads = common.threads;
     opt.Validate();  // bad input exits 2 before any work
-    if (!flags.json.empty()) {
-        pipeline::CheckWritableFile(flags.json, "--json");
+    // The output folder is one set (runs/, sheets/, images, bench.json): filled under a
+    // temporary name and swapped in at the end, so a failed or killed bench never mixes new
+    // runs with an old bench.json. Only a bench folder (or an empty one) is replaced.
+    std::error_code ec;
+    if (std::filesystem::is_directory(flags.out, ec) && !std::filesystem::is_empty(flags.out, ec) &&
+        !std::filesystem::exists(std::filesystem::path(flags.out) / "bench.json", ec)) {
+        throw MakeInputError(flags.out, "--out", "",
+                             "holds files but no bench.json: not replacing a folder that is not "
+                             "a bench output; choose a new or empty folder");
     }
-    io::EnsureDirectory(flags.out);
     const pipeline::DistributedSession session;  // MPI under mpirun/srun, else one rank
     opt.session = &session;
+    io::OutputSet outputs;  // rank 0 writes every output
+    std::filesystem::path json_tmp;
+    std::filesystem::path out_tmp;
+    if (session.rank() == 0) {
+        if (!flags.json.empty()) {
+            json_tmp = outputs.AddFile(flags.json, "--json");
+        }
+        out_tmp = outputs.AddFolder(flags.out, "--out");
+    }
     pipeline::BenchResult result;
     {
         ProgressBar bar("bench");
@@ -58,10 +75,11 @@ void RunBench(BenchFlags& flags, const CommonOptions& common) {
     if (session.rank() != 0) {
         return;  // rank 0 writes every output
     }
-    const std::string json = pipeline::WriteBenchOutputs(flags.out, result);
+    const std::string json = pipeline::WriteBenchOutputs(out_tmp, result);
     if (!flags.json.empty()) {
-        io::WriteTextAtomically(flags.json, json);
+        io::WriteTextAtomically(json_tmp, json);
     }
+    outputs.Publish();
     std::fputs(pipeline::PiTable(result.runs).c_str(), stdout);
     std::printf("%zu runs in %.1f s on %d threads x %d rank(s) -> %s\n", result.runs.size(),
                 result.elapsed_s, result.threads, session.ranks(), flags.out.c_str());

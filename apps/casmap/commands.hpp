@@ -2,6 +2,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "apps/casmap/flag_checks.hpp"
+
 namespace casmap::app {
 
 // Commands are thin clients of the pipeline library: flags -> option structs -> one pipeline
@@ -18,7 +20,7 @@ struct CommonOptions {
 /// Adds the shared --threads option to a subcommand.
 inline void AddThreadsOption(CLI::App* sub, CommonOptions& common) {
     sub->add_option("--threads", common.threads, "worker threads (0 = all cores)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(ThreadsCheck());
 }
 
 using AddCommandFn = void (*)(CLI::App& app, CommonOptions& common);

@@ -111,7 +111,7 @@ void AddDatasetCommand(CLI::App& app, CommonOptions& common) {
         ->required();
     sub->add_option("--out", flags->out, "output directory")->required();
     sub->add_option("--count", flags->count, "number of samples (overrides the spec)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(WholeNumberCheck(0, 100000000));
     CLI::Option* seed = sub->add_option("--seed", flags->seed, "dataset seed (overrides the spec)");
     sub->add_option("--shard", flags->shard, "generate only indices i with i % K == I (I/K)");
     sub->add_option("--meshes", flags->meshes, "directory of rock_*.ply meshes (scenes/meshes)");

@@ -2,9 +2,11 @@
 // Exit status: 0 success, 2 bad input (one line naming file, field and rule), 1 anything else.
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
 
 #include "apps/casmap/commands.hpp"
+#include "apps/casmap/flag_checks.hpp"
 #include "casmap/core/input_error.hpp"
 
 namespace casmap::app {
@@ -64,6 +66,7 @@ int main(int argc, char** argv) {
     AddViewCommand(app, common);
 #endif
     // END COMMAND REGISTRATION
+    AddFlagChecks(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -78,6 +81,10 @@ int main(int argc, char** argv) {
     } catch (const casmap::InputError& e) {
         std::fprintf(stderr, "casmap: %s\n", e.what());
         return 2;
+    } catch (const std::bad_alloc&) {
+        // Sizes from files and flags are bounded (docs/limits.md); this is the machine's limit.
+        std::fprintf(stderr, "casmap: error: out of memory (see docs/limits.md)\n");
+        return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "casmap: error: %s\n", e.what());
         return 1;

@@ -10,6 +10,8 @@
 #include "apps/casmap/commands.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/atomic_file.hpp"
+#include "casmap/io/image.hpp"
+#include "casmap/io/output_set.hpp"
 #include "casmap/io/run_file.hpp"
 #include "casmap/pipeline/map_run.hpp"
 
@@ -60,33 +62,74 @@ std::string MapYaml(const MapOptions& opt,
     return y;
 }
 
+// The TIFF and PNG of one layer, written to the temporaries of `outputs`.
+struct LayerFiles {
+    fs::path tiff;
+    fs::path png;
+};
+
+LayerFiles AddLayer(io::OutputSet& outputs, const fs::path& dir, const std::string& stem) {
+    return {outputs.AddFile(dir / (stem + ".tiff"), "--out", true),
+            outputs.AddFile(dir / (stem + ".png"), "--out", true)};
+}
+
+void WriteLayer(const LayerFiles& files,
+                const core::MapF& map,
+                const std::string& title,
+                const std::string& unit,
+                const core::Raster<std::uint8_t>* unknown) {
+    io::WriteMapTiff(files.tiff, map);
+    io::PngStyle style;
+    style.title = title;
+    style.unit = unit;
+    style.unknown = unknown;
+    io::WriteMapPng(files.png, map, style);
+}
+
 void RunMap(const MapOptions& opt) {
     const io::RunData run = io::ReadRunFile(opt.run);
+    if (run.scans.empty()) {
+        throw MakeInputError(opt.run, "/scans", "0 scans", "a run needs scans to be mapped");
+    }
+    if (run.poses.empty()) {
+        throw MakeInputError(opt.run, "/poses", "0 poses",
+                             "mapping needs the sensor poses (record --poses)");
+    }
     const core::GridGeometry grid = ChooseGrid(opt, run);
     const fs::path run_path(opt.run);
     const fs::path dir = opt.out.empty()
                              ? run_path.parent_path() / (run_path.stem().string() + "_maps")
                              : fs::path(opt.out);
-    io::EnsureDirectory(dir);
+    // Every output, the run file included, is checked before mapping and published at the
+    // end (the run file last): a read-only run folder fails here, not after writing --out.
+    const bool with_truth = run.maps.truth_m && run.maps.grid && *run.maps.grid == grid;
+    io::OutputSet outputs;
+    const LayerFiles elevation_files = AddLayer(outputs, dir, "elevation");
+    const LayerFiles certainty_files = AddLayer(outputs, dir, "certainty");
+    const LayerFiles truth_files = with_truth ? AddLayer(outputs, dir, "truth") : LayerFiles{};
+    const fs::path yaml_tmp = outputs.AddFile(dir / "map.yaml", "--out", true);
+    const fs::path config_tmp = run.config_yaml.empty()
+                                    ? fs::path()
+                                    : outputs.AddFile(dir / "run_config.yaml", "--out", true);
+    const fs::path run_tmp = outputs.AddFile(run_path, "run (its maps are stored in it)");
 
     const pipeline::MappedRun mapped = pipeline::MapScans(run.scans, run.poses, grid);
     const core::Raster<std::uint8_t> unknown = pipeline::UnknownMask(mapped.certainty);
-    pipeline::WriteMapFiles(dir, "elevation", mapped.elevation, "elevation (Eq. 6)", "m", &unknown);
-    pipeline::WriteMapFiles(dir, "certainty", mapped.certainty, "certainty (Eq. 5)", "counts",
-                            &unknown);
-    if (run.maps.truth_m && run.maps.grid && *run.maps.grid == grid) {
-        pipeline::WriteMapFiles(dir, "truth", *run.maps.truth_m, "ground truth", "m", nullptr);
+    WriteLayer(elevation_files, mapped.elevation, "elevation (Eq. 6)", "m", &unknown);
+    WriteLayer(certainty_files, mapped.certainty, "certainty (Eq. 5)", "counts", &unknown);
+    if (with_truth) {
+        WriteLayer(truth_files, *run.maps.truth_m, "ground truth", "m", nullptr);
     }
-    io::WriteTextAtomically(dir / "map.yaml", MapYaml(opt, run, mapped));
+    io::WriteTextAtomically(yaml_tmp, MapYaml(opt, run, mapped));
     if (!run.config_yaml.empty()) {
-        io::WriteTextAtomically(dir / "run_config.yaml", run.config_yaml);
+        io::WriteTextAtomically(config_tmp, run.config_yaml);
     }
-
-    io::RunMaps maps;
-    maps.grid = grid;
-    maps.elevation_m = mapped.elevation;
-    maps.certainty = mapped.certainty;
-    io::AddRunMaps(opt.run, maps);
+    io::RunData updated = run;  // the stored grid equals `grid` (ChooseGrid)
+    updated.maps.grid = grid;
+    updated.maps.elevation_m = mapped.elevation;
+    updated.maps.certainty = mapped.certainty;
+    io::WriteRunFile(run_tmp, updated);
+    outputs.Publish();
     std::printf("mapped %llu of %llu beams onto %d x %d cells -> %s and %s\n",
                 static_cast<unsigned long long>(mapped.stats.beams_mapped),
                 static_cast<unsigned long long>(mapped.stats.beams_seen), grid.rows, grid.cols,

@@ -10,6 +10,7 @@
 // Prints a table; writes a PNG plot and JSON when asked. --sensor: the LMS 200 config file
 // (config/lms200.yaml); the JSON then names it and lists every key of the config used.
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -71,8 +72,13 @@ void Validate(const MixedOptions& o) {
     if (!(o.step_m > 0.0)) {
         throw bad("--step", o.step_m, "must be > 0");
     }
-    if (o.readings <= 0) {
-        throw bad("--readings", o.readings, "must be > 0");
+    // Bounds the result table and the run time (docs/limits.md): Fig. 3 has 24 gaps.
+    constexpr double kMaxGaps = 10000.0;
+    if (!std::isfinite(o.to_m) || (o.to_m - o.from_m) / o.step_m > kMaxGaps) {
+        throw bad("--step", o.step_m, "more than 10000 gaps from --from to --to");
+    }
+    if (o.readings <= 0 || o.readings > 1000000) {
+        throw bad("--readings", o.readings, "allowed: 1..1000000");
     }
     if (!(o.foreground_m > 0.3 && o.foreground_m < 8.0)) {
         throw bad("--foreground-m", o.foreground_m, "allowed: 0.3 < x < 8 (the 8 m mode)");

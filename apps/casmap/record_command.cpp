@@ -343,7 +343,7 @@ void AddRecordCommand(CLI::App& app, CommonOptions& common) {
     sub->add_option("--baud", opt->baud, "rate to switch to (9600, 19200, 38400, 500000)")
         ->capture_default_str();
     CLI::Option* scans =
-        sub->add_option("--scans", opt->scans, "stop after N scans")->check(CLI::PositiveNumber);
+        sub->add_option("--scans", opt->scans, "stop after N scans");  // checked by flag_checks.hpp
     CLI::Option* duration = sub->add_option("--duration", opt->duration_s, "stop after S seconds");
     scans->excludes(duration);
     sub->add_option("--out", opt->out, "run file to write (HDF5)")->required();

@@ -14,6 +14,7 @@
 #include "apps/casmap/progress_bar.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/atomic_file.hpp"
+#include "casmap/io/output_set.hpp"
 #include "casmap/io/run_file.hpp"
 #include "casmap/io/scene_file.hpp"
 #include "casmap/pipeline/sim_pipeline.hpp"
@@ -31,19 +32,15 @@ struct SimulateOptions {
 const FlagNames kFlags = {
     {"motion", "--motion"}, {"speed_m_s", "--speed"}, {"pose_error", "--pose-error"}};
 
-void CheckOutput(const std::string& out) {
-    const fs::path path(out);
-    const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-    if (path.filename().empty() || !fs::is_directory(dir)) {
-        throw MakeInputError(out, "--out", out, "directory " + dir.string() + " does not exist");
-    }
-}
-
 void RunSimulate(SimulateOptions& opt, const CommonOptions& common, bool speed_given) {
     if (speed_given) {
         opt.flags.speed_m_s = opt.speed_m_s;
     }
-    CheckOutput(opt.out);  // fail before minutes of work, not after
+    // Both outputs are checked before minutes of work and published together at the end,
+    // the config first: a kill leaves either the old pair or the new config beside the old run.
+    io::OutputSet outputs;
+    const fs::path config_tmp = outputs.AddFile(opt.out + ".config.yaml", "--out (config)");
+    const fs::path run_tmp = outputs.AddFile(opt.out, "--out");
     pipeline::SimSetup setup;
     WithFlagNames(kFlags, [&] { setup = pipeline::ResolveSimSetup(opt.flags); });
     const core::Scene scene = io::LoadScene(setup.scene_path);
@@ -57,8 +54,9 @@ void RunSimulate(SimulateOptions& opt, const CommonOptions& common, bool speed_g
         options.progress = bar.Fn();
         result = pipeline::SimulateRun(setup, scene, world, poses, options);
     }
-    io::WriteRunFile(opt.out, result.run);
-    io::WriteTextAtomically(opt.out + ".config.yaml", result.run.config_yaml);
+    io::WriteTextAtomically(config_tmp, result.run.config_yaml);
+    io::WriteRunFile(run_tmp, result.run);
+    outputs.Publish();
     std::printf("simulated %zu scans (%.2f s, %zu poses) of %s, motion %s, seed %llu -> %s\n",
                 result.run.scans.size(), poses.empty() ? 0.0 : poses.EndTime() - poses.StartTime(),
                 poses.size(), setup.scene_path.c_str(), setup.motion_name.c_str(),

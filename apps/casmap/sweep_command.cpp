@@ -10,7 +10,9 @@
 #include "apps/casmap/commands.hpp"
 #include "apps/casmap/flag_names.hpp"
 #include "apps/casmap/progress_bar.hpp"
+#include "casmap/core/input_error.hpp"
 #include "casmap/io/atomic_file.hpp"
+#include "casmap/mapper/filter_params.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
 #include "casmap/pipeline/sweep.hpp"
 
@@ -43,6 +45,18 @@ void RunSweep(SweepFlags& flags, const CommonOptions& common) {
     opt.courses = pipeline::ParseCourses(flags.courses, "--courses");
     opt.tests = pipeline::ParseTests(flags.tests, "--tests");
     opt.threads = common.threads;
+    for (const std::string& fixed : opt.fixed) {  // name the flag the user wrote, not --set
+        try {
+            mapper::FilterParams check;
+            check.SetAssignment(fixed);
+        } catch (const InputError& e) {
+            std::string message = e.what();
+            if (message.rfind("--set", 0) == 0) {
+                message.replace(0, 5, "--fix");
+            }
+            throw InputError(message);
+        }
+    }
     opt.Validate();  // bad input exits 2 before any work
     if (!flags.json.empty()) {
         pipeline::CheckWritableFile(flags.json, "--json");

@@ -12,6 +12,7 @@
 #include "casmap/core/grid.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/image.hpp"
+#include "casmap/io/output_set.hpp"
 #include "casmap/io/scene_file.hpp"
 #include "casmap/pipeline/map_run.hpp"
 #include "casmap/sim/ground_truth.hpp"
@@ -38,6 +39,10 @@ void RunTruth(const TruthOptions& opt, const CommonOptions& common) {
         throw MakeInputError("command line", "--png", opt.png, "must end in .png");
     }
     const core::GridGeometry grid = pipeline::ParseGrid(opt.grid, "--grid");
+    io::OutputSet outputs;  // TIFF and PNG: checked first, published together
+    const std::filesystem::path tiff_tmp = outputs.AddFile(opt.out, "--out");
+    const std::filesystem::path png_tmp =
+        opt.png.empty() ? std::filesystem::path() : outputs.AddFile(opt.png, "--png");
     sim::GroundTruthOptions options;
     options.rule =
         opt.rule == "centre" ? sim::TruthRule::kCellCentre : sim::TruthRule::kHighestInCell;
@@ -50,12 +55,13 @@ void RunTruth(const TruthOptions& opt, const CommonOptions& common) {
     }  // neither: clamp unless the scene has terrain (sim::ClampsToDatum)
     const core::Scene scene = io::LoadScene(opt.scene);
     const core::MapF map = sim::GroundTruthElevation(scene, grid, options, common.threads);
-    io::WriteMapTiff(opt.out, map);
+    io::WriteMapTiff(tiff_tmp, map);
     if (!opt.png.empty()) {
         io::PngStyle style;
         style.title = "ground truth: " + opt.scene;
-        io::WriteMapPng(opt.png, map, style);
+        io::WriteMapPng(png_tmp, map, style);
     }
+    outputs.Publish();
     const auto [lo, hi] = std::minmax_element(map.data.begin(), map.data.end());
     std::printf("wrote %s: %d x %d cells of %g m, elevation %.4f .. %.4f m (%s rule)\n",
                 opt.out.c_str(), grid.rows, grid.cols, grid.cell_m, static_cast<double>(*lo),

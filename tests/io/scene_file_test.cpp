@@ -171,9 +171,11 @@ TEST_F(SceneFileTest, RejectsBadMeshes) {
 TEST_F(SceneFileTest, RejectsNonPositiveSizes) {
     EXPECT_THAT(
         ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, -2, 1]}\n"),
-        ::testing::HasSubstr("scene.yaml:3:23: objects[0].box.size_m[1] = -2 (allowed: > 0)"));
-    EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    cylinder: {radius_m: 0, height_m: 1}\n"),
-                ::testing::HasSubstr("objects[0].cylinder.radius_m = 0 (allowed: > 0)"));
+        ::testing::HasSubstr(
+            "scene.yaml:3:23: objects[0].box.size_m[1] = -2 (allowed: 0 < size <= 10000 m"));
+    EXPECT_THAT(
+        ErrorOf("objects:\n  - name: a\n    cylinder: {radius_m: 0, height_m: 1}\n"),
+        ::testing::HasSubstr("objects[0].cylinder.radius_m = 0 (allowed: 0 < size <= 10000 m"));
     EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    cylinder: {radius_m: 1}\n"),
                 ::testing::HasSubstr("objects[0].cylinder.height_m (required key is missing)"));
     EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, 1]}\n"),
