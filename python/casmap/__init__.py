@@ -1,0 +1,232 @@
+"""casmap: a SICK LMS 200 simulator, terrain mapper (Eq. 1-6) and the CAS filter of Ye &
+Borenstein, from Python. numpy in, numpy out; maps are float32 arrays with rows along-track.
+
+    import casmap
+    filtered, classes = casmap.filter("cas", elevation, certainty, k=2)
+    pi = casmap.performance_index(filtered, raw, truth)
+
+Bad input raises ValueError with the one-line message the `casmap` program prints. Long calls
+(filtering, mapping, simulating, reading and writing run files) release the GIL.
+See docs/api/python.md.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, field
+from typing import Optional
+
+import numpy as np
+
+from . import _casmap
+from ._casmap import (Grid, cas_classes_percent, performance_index, read_map_tiff,
+                      with_simulator, write_map_tiff)
+
+__all__ = [
+    "Grid", "Mapper", "Poses", "Run", "Scans", "Maps", "filter", "performance_index",
+    "cas_classes_percent", "read_run", "write_run", "map_run", "read_map_tiff",
+    "write_map_tiff", "with_simulator", "BEAM_STATUS", "BEAM_LABELS", "CAS_CLASSES",
+    "FILTER_METHODS", "LMS200_BEAM_PERIOD_S",
+]
+
+#: Filter methods of the paper's benchmark, in its order.
+FILTER_METHODS = ("cas", "wiener", "average", "median", "cwm")
+#: core::BeamStatus codes (the `status` arrays).
+BEAM_STATUS = ("ok", "no_return", "dazzle", "overflow", "low_signal", "read_error",
+               "out_of_range")
+#: core::BeamLabel codes (the `labels` arrays of simulated scans).
+BEAM_LABELS = ("valid", "mixed", "missing", "spike", "no_target")
+#: mapper::PixelClass codes (the `classes` array of casmap.filter("cas", ...)).
+CAS_CLASSES = ("untouched", "removed", "filled", "border")
+#: Seconds between adjacent 1-degree pulses of the LMS 200 (75 Hz mirror): (1/75) / 360.
+LMS200_BEAM_PERIOD_S = (1.0 / 75.0) / 360.0
+
+
+def _param_text(name: str, value) -> str:
+    """A keyword value as `casmap filter --set NAME=VALUE` spells it."""
+    if isinstance(value, bool):
+        return "on" if value else "off"
+    if isinstance(value, float):
+        return repr(value)  # shortest text that reads back as the same double
+    return str(value)
+
+
+def filter(method: str, elevation, certainty=None, **params):
+    """Runs one of the paper's five filters on an elevation map (float32, metres).
+
+    method: "cas", "wiener", "average", "median" or "cwm". certainty (float32 counts) is
+    required by "cas". params: the names of `casmap filter --set`, e.g. k=2, A=12.0,
+    gs_mode="variance", e_term=True, window=5. Returns (filtered, classes): classes is the
+    per-pixel uint8 array of CAS_CLASSES codes, None for the baselines.
+    """
+    pairs = [(name, _param_text(name, value)) for name, value in params.items()]
+    return _casmap._filter(method, elevation, certainty, pairs)
+
+
+@dataclass
+class Scans:
+    """/scans of a run file: N scans of B beams sharing one geometry."""
+    stamp_s: np.ndarray                 # (N,) float64, time of beam 0
+    ranges_m: np.ndarray                # (N, B) float32, NaN where status != ok
+    raw: np.ndarray                     # (N, B) uint16, the value the scanner sent
+    status: np.ndarray                  # (N, B) uint8, BEAM_STATUS codes
+    start_angle_rad: float              # beam i at start + i * step about sensor +z
+    angle_step_rad: float
+    beam_period_s: float                # beam i measured at stamp + i * beam_period_s
+    labels: Optional[np.ndarray] = None        # (N, B) uint8 BEAM_LABELS (simulated runs)
+    true_range_m: Optional[np.ndarray] = None  # (N, B) float32 (simulated runs)
+    beam_time_offset_s: Optional[np.ndarray] = None  # (B,) replaces i * beam_period_s
+
+    @property
+    def angles_rad(self) -> np.ndarray:
+        return self.start_angle_rad + np.arange(self.ranges_m.shape[1]) * self.angle_step_rad
+
+
+@dataclass
+class Poses:
+    """/poses: world_T_sensor samples, strictly increasing stamps."""
+    stamp_s: np.ndarray    # (P,) float64
+    xyz_m: np.ndarray      # (P, 3) float64, sensor origin in the world
+    quat_xyzw: np.ndarray  # (P, 4) float64, unit quaternion world_R_sensor
+    _trajectory: object = field(default=None, repr=False, compare=False)
+
+    def trajectory(self):
+        """The C++ trajectory, built once (ValueError for bad stamps or shapes)."""
+        if self._trajectory is None:
+            self._trajectory = _casmap._Trajectory(self.stamp_s, self.xyz_m, self.quat_xyzw)
+        return self._trajectory
+
+    @staticmethod
+    def empty() -> "Poses":
+        return Poses(np.zeros(0), np.zeros((0, 3)), np.zeros((0, 4)))
+
+
+@dataclass
+class Maps:
+    """/maps: layers on one grid (None when absent)."""
+    grid: Optional[Grid] = None
+    elevation_m: Optional[np.ndarray] = None
+    certainty: Optional[np.ndarray] = None
+    truth_m: Optional[np.ndarray] = None
+    filtered: dict = field(default_factory=dict)  # method -> float32 map
+
+
+@dataclass
+class Run:
+    """Everything a run file holds (docs/run-file.md)."""
+    scans: Scans
+    poses: Poses
+    maps: Maps = field(default_factory=Maps)
+    seed: Optional[int] = None
+    config_yaml: str = ""
+    format: Optional[tuple] = None  # ("8m"|"16m"|"32m", "mm"|"cm") when known
+
+    @staticmethod
+    def _from_dict(d: dict) -> "Run":
+        return Run(scans=Scans(**d["scans"]), poses=Poses(**d["poses"]), maps=Maps(**d["maps"]),
+                   seed=d["seed"], config_yaml=d["config_yaml"], format=d["format"])
+
+    def _to_dict(self) -> dict:
+        scans = {k: getattr(self.scans, k) for k in (
+            "stamp_s", "ranges_m", "raw", "status", "labels", "true_range_m",
+            "start_angle_rad", "angle_step_rad", "beam_period_s", "beam_time_offset_s")}
+        poses = {"stamp_s": self.poses.stamp_s, "xyz_m": self.poses.xyz_m,
+                 "quat_xyzw": self.poses.quat_xyzw}
+        maps = {"grid": self.maps.grid, "elevation_m": self.maps.elevation_m,
+                "certainty": self.maps.certainty, "truth_m": self.maps.truth_m,
+                "filtered": dict(self.maps.filtered)}
+        return {"scans": scans, "poses": poses, "maps": maps, "seed": self.seed,
+                "config_yaml": self.config_yaml, "format": self.format}
+
+
+def read_run(path) -> Run:
+    """Reads and validates a run file (`casmap simulate` / `casmap record` output)."""
+    return Run._from_dict(_casmap._read_run(os.fspath(path)))
+
+
+def write_run(path, run: Run) -> None:
+    """Writes `run` to `path` atomically; the same data gives a byte-identical file."""
+    _casmap._write_run(os.fspath(path), run._to_dict())
+
+
+def map_run(run: Run, grid: Optional[Grid] = None, cell_m: float = 0.025, a: int = 3,
+            delta_l_m: float = 0.032):
+    """Elevation and certainty maps (Eq. 1-6) of a run, as `casmap map` builds them.
+
+    grid None: the smallest grid of cell_m cells covering every valid beam. Returns
+    (elevation, certainty, grid).
+    """
+    d = _casmap._map_scans(run._to_dict(), grid, cell_m, a, delta_l_m)
+    return d["elevation"], d["certainty"], d["grid"]
+
+
+class Mapper:
+    """The terrain mapper (Eq. 1-6) fed scan by scan, e.g. from a live scanner.
+
+        mapper = casmap.Mapper(casmap.Grid(x0_m=1, y0_m=-1, cell_m=0.025, rows=200, cols=80))
+        mapper.add_scan(stamp_s, ranges_m, status, poses)
+        h, c = mapper.elevation, mapper.certainty
+    """
+
+    def __init__(self, grid: Grid, a: int = 3, delta_l_m: float = 0.032,
+                 scan_period_s: float = 1.0 / 75.0):
+        self._mapper = _casmap._Mapper(grid, a, delta_l_m, scan_period_s)
+
+    def add_scan(self, stamp_s: float, ranges_m, status, poses: Poses, *,
+                 start_angle_rad: float = -math.pi / 2, angle_step_rad: float = math.pi / 180,
+                 beam_period_s: float = LMS200_BEAM_PERIOD_S, beam_time_offset_s=None) -> None:
+        """Maps one scan: ranges_m float32 (B,), status uint8 (B,) BEAM_STATUS codes, beam i
+        at start_angle_rad + i * angle_step_rad measured at stamp_s + i * beam_period_s, each
+        beam placed with the pose of `poses` at its own time (beams without one are skipped).
+        The defaults are the LMS 200's 180 deg / 1 deg scan."""
+        offsets = [] if beam_time_offset_s is None else list(map(float, beam_time_offset_s))
+        geometry = _casmap._ScanGeometry(start_angle_rad, angle_step_rad, beam_period_s, offsets)
+        self._mapper.add_scan(stamp_s, ranges_m, status, poses.trajectory(), geometry)
+
+    @property
+    def elevation(self) -> np.ndarray:
+        """H (m), float32 (rows, cols); 0 where never observed."""
+        return self._mapper.elevation
+
+    @property
+    def certainty(self) -> np.ndarray:
+        """C (counts), float32 (rows, cols); 0 where never observed."""
+        return self._mapper.certainty
+
+    @property
+    def grid(self) -> Grid:
+        return self._mapper.grid
+
+    @property
+    def stats(self) -> dict:
+        """beams_seen, beams_not_ok, beams_no_pose, beams_outside, beams_mapped."""
+        return self._mapper.stats
+
+
+if with_simulator:
+    from ._casmap import Scene, load_scene, truth
+
+    __all__ += ["Scene", "load_scene", "scan_at", "simulate", "truth"]
+
+    def scan_at(scene, pose, seed: int = 0, sensor=None, ideal: bool = False) -> dict:
+        """One simulated LMS 200 scan from a fixed pose, as `casmap scan`.
+
+        pose: (x_m, y_m, z_m, roll_deg, pitch_deg, yaw_deg), world frame. sensor: an LMS 200
+        YAML file (config/lms200.yaml) or None for the defaults. Returns a dict of arrays:
+        angles_rad, ranges_m (float32), raw (uint16), status (BEAM_STATUS codes), labels
+        (BEAM_LABELS codes), true_range_m.
+        """
+        return _casmap._scan_at(scene, [float(v) for v in pose], seed,
+                                None if sensor is None else os.fspath(sensor), ideal)
+
+    def simulate(scene, motion: str, seed: int = 1, rig=None, sensor=None,
+                 speed_m_s: Optional[float] = None, threads: int = 0) -> Run:
+        """One simulated run, as `casmap simulate`: motion T, TR, TP, TRP (the table) or
+        vehicle; rig and sensor are YAML files (None: the defaults). The result, written
+        with write_run, is byte-identical to the CLI's run file; any thread count gives the
+        same run."""
+        d = _casmap._simulate(scene, motion, seed,
+                              None if rig is None else os.fspath(rig),
+                              None if sensor is None else os.fspath(sensor), speed_m_s, threads)
+        return Run._from_dict(d)
