@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds casmap with tests and benchmarks, and runs the whole suite:
-# the full build, then the robot build without the simulator (-DCASMAP_BUILD_SIM=OFF).
+# the full build, then the robot build without the simulator (-DCASMAP_BUILD_SIM=OFF), then both
+# installed as a package (examples and Python tests against the install).
 # Idempotent; run from anywhere, as root or as a user with sudo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -27,3 +28,7 @@ cmake -S . -B build-nosim -G Ninja -DCMAKE_BUILD_TYPE=Release -DCASMAP_BUILD_SIM
     -DCASMAP_BUILD_TESTS=ON -DCASMAP_WERROR=ON
 cmake --build build-nosim -j "$jobs"
 ctest --test-dir build-nosim --output-on-failure --timeout 300 --repeat until-pass:2
+
+# The installed package of both builds: examples built standalone against a temporary prefix and
+# run, the pytest suite against the installed Python module (scripts/test-package.sh).
+bash scripts/test-package.sh build build-nosim
