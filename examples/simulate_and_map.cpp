@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
     try {
         // 1. The installed scenes/courses, default rig and sensor, seed 1.
         const cm::pipeline::BenchSettings settings =
-            cm::pipeline::CheckBenchSettings("", "", "", 1);
+            cm::pipeline::ResolveBenchSettings("", "", "", 1);
         const cm::pipeline::SimSetup setup =
             cm::pipeline::BenchSetup(settings, course_number, test);
 

@@ -12,7 +12,6 @@
 
 #include "bindings.hpp"
 #include "casmap/core/input_error.hpp"
-#include "casmap/core/parallel.hpp"
 #include "casmap/io/scene_file.hpp"
 #include "casmap/io/sensor_config.hpp"
 #include "casmap/pipeline/sim_pipeline.hpp"
@@ -111,8 +110,9 @@ py::dict Simulate(const LoadedScene& scene,
         flags.speed_m_s = speed_m_s;
         const pipeline::SimSetup setup = pipeline::ResolveSimSetup(flags);
         const core::Trajectory poses = pipeline::RigTrajectory(setup, scene.scene);
-        result = pipeline::SimulateRun(setup, scene.scene, *scene.world, poses,
-                                       core::ResolveThreads(threads), nullptr);
+        pipeline::SimulateRunOptions options;
+        options.threads = threads;
+        result = pipeline::SimulateRun(setup, scene.scene, *scene.world, poses, options);
     }
     return RunToDict(result.run);
 }
