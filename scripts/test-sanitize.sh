@@ -2,18 +2,25 @@
 # Builds casmap with AddressSanitizer + UndefinedBehaviorSanitizer (build-asan: -O1 -g1, tests
 # on, benchmarks off) and runs the whole test suite under them. Any sanitizer report fails the
 # test that triggered it (halt_on_error), and so this script.
-#   SANITIZE_TESTS   ctest -R regex to run a subset (default: every test)
+#   SANITIZE_TESTS    ctest -R regex to run a subset (default: every test but the excluded)
+#   SANITIZE_EXCLUDE  ctest -E regex (default below). Left out by default: the tests that
+#     pace bytes over a pty in real time against a 13.3 ms scan clock (ServeRecord*, LiveCommand:
+#     ASan's slowdown makes them miss slots; their code paths are covered by the driver, parser,
+#     telegram, virtual-scanner and pose-stream tests that do run), the MPI runs (OpenMPI's own
+#     allocations trip LeakSanitizer) and the Python tests (the interpreter is not instrumented).
+#     The Python module and the examples are not built here; the main build tests them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1" \
     -DCASMAP_SANITIZE="address;undefined" -DCASMAP_BUILD_TESTS=ON \
-    -DCASMAP_BUILD_BENCHMARKS=OFF >/dev/null
+    -DCASMAP_BUILD_BENCHMARKS=OFF -DCASMAP_BUILD_PYTHON=OFF -DCASMAP_BUILD_EXAMPLES=OFF >/dev/null
 cmake --build build-asan -j "$(nproc)"
 
 # Leak checking stays on; UBSan findings abort the test (they only print by default).
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
 ctest --test-dir build-asan --output-on-failure --timeout 600 --repeat until-pass:2 \
+    -E "${SANITIZE_EXCLUDE:-^(python|dataset_python_example|dataset_mpi_ranks|bench_mpi_ranks)$|^(ServeRecord|ServeRecordCommand|LiveCommand)\\.}" \
     ${SANITIZE_TESTS:+-R "$SANITIZE_TESTS"}
