@@ -321,9 +321,9 @@ core::MapF GroundTruthElevation(const core::Scene& scene,
         }
         for (int c = 0; c < grid.cols; ++c) {
             const double top = z[static_cast<std::size_t>(c)];
-            const double value = top == kNone             ? options.datum_m
-                                 : clamp                  ? std::max(options.datum_m, top)
-                                                          : top;
+            const double value = top == kNone ? options.datum_m
+                                 : clamp      ? std::max(options.datum_m, top)
+                                              : top;
             map.at(r, c) = static_cast<float>(value);
         }
     });

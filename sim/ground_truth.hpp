@@ -18,7 +18,7 @@ enum class TruthRule {
 
 struct GroundTruthOptions {
     TruthRule rule = TruthRule::kHighestInCell;
-    double datum_m = 0.0;          // world z of the map datum
+    double datum_m = 0.0;  // world z of the map datum
     // Clamp at the datum: max(datum, highest point), so cells with nothing above the datum
     // hold the datum (the paper's flat-floor setting, DESIGN.md). Unset (the default): clamp
     // only scenes without a `terrain: true` object (the obstacle courses, whose floor top is

@@ -61,9 +61,7 @@ std::string Expand(std::string text, const fs::path& tmp) {
 }
 
 // Without the simulator "simulate" is no subcommand (and "--help" after it still succeeds).
-bool HaveSimulator() {
-    return Casmap("simulate").output.find("--scene") != std::string::npos;
-}
+bool HaveSimulator() { return Casmap("simulate").output.find("--scene") != std::string::npos; }
 
 TEST(BadInputs, EveryCaseExitsTwoWithOneLineNamingTheField) {
     const std::vector<Case> cases = LoadCases();
