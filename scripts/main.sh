@@ -4,6 +4,8 @@
 # writes the maps and charts to out/bench (casmap view out/bench shows them in a browser). Idempotent; as root or as a user with sudo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# ccache (used when installed) keys on paths relative to the clone, so any clone reuses it.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
 
 bash scripts/install-deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release

@@ -5,6 +5,8 @@
 # Idempotent; run from anywhere, as root or as a user with sudo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# ccache (used when installed) keys on paths relative to the clone, so any clone reuses it.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
 
 bash scripts/install-deps.sh
 jobs=$(nproc)
