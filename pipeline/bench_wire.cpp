@@ -72,7 +72,9 @@ public:
         const std::size_t n = static_cast<std::size_t>(m.rows) * static_cast<std::size_t>(m.cols);
         Need(n * sizeof(float));
         m.data.resize(n);
-        std::memcpy(m.data.data(), in_.data() + at_, n * sizeof(float));
+        if (n > 0) {  // an empty map has no buffer: memcpy must not see a null pointer
+            std::memcpy(m.data.data(), in_.data() + at_, n * sizeof(float));
+        }
         at_ += n * sizeof(float);
         return m;
     }
