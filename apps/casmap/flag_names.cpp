@@ -8,6 +8,9 @@ void WithFlagNames(const FlagNames& names, const std::function<void()>& body) {
     try {
         body();
     } catch (const InputError& e) {
+        if (!e.where().empty()) {
+            throw;  // an error inside a file (rig.yaml:3:3) names that file's field, not a flag
+        }
         const std::string& field = e.field();
         for (const auto& [name, flag] : names) {
             if (field == name) {

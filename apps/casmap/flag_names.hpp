@@ -12,8 +12,10 @@ namespace casmap::app {
 /// Options field -> flag, e.g. {"courses", "--courses"}.
 using FlagNames = std::map<std::string, std::string>;
 
-/// Runs `body`; an InputError whose field is (or starts with "<name> " / "<name>[") a mapped
-/// options field is rethrown naming the flag instead. Other errors pass unchanged.
+/// Runs `body`; an InputError about the options struct itself (no file or position: empty
+/// `where()`) whose field is (or starts with "<name> " / "<name>[") a mapped options field is
+/// rethrown naming the flag instead. Other errors pass unchanged: an error inside a file
+/// ("rig.yaml:3:3: speed_m_s (duplicate key)") keeps the file's field name.
 void WithFlagNames(const FlagNames& names, const std::function<void()>& body);
 
 }  // namespace casmap::app

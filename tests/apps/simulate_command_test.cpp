@@ -152,6 +152,23 @@ TEST(SimulateCommand, BadInputExitsTwoNamingIt) {
     EXPECT_FALSE(fs::exists(dir / "run.h5"));
 }
 
+// An error inside a file names the file's field, never the flag of the options field with the
+// same name (`speed_m_s` is also the field --speed sets).
+TEST(SimulateCommand, RigFileErrorNamesTheYamlFieldNotAFlag) {
+    if (!HaveSimulator()) {
+        GTEST_SKIP() << "built without the simulator";
+    }
+    const fs::path dir = MakeScene("dup");
+    const std::string rig = (dir / "rig.yaml").string();
+    std::ofstream(rig) << "table:\n  speed_m_s: 0.5\n  speed_m_s: 0.6\n";
+    const Result r = Casmap("simulate --scene " + (dir / "scene.yaml").string() +
+                            " --motion T --rig " + rig + " --out " + (dir / "run.h5").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find(rig + ":3:3: speed_m_s (duplicate key)"), std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("--speed"), std::string::npos) << r.output;
+}
+
 TEST(SimulateCommand, KilledRunLeavesNoTruncatedFile) {
     if (!HaveSimulator()) {
         GTEST_SKIP() << "built without the simulator";
