@@ -1,8 +1,12 @@
 #include "casmap/io/hdf5_util.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
+
+#include "casmap/io/hdf5_global_heap.hpp"
 
 namespace casmap::io::h5 {
 namespace {
@@ -37,6 +41,15 @@ Id ScalarSpace() { return Check(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate"); }
 Id Utf8StringType() {
     Id type = Check(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy");
     Check(H5Tset_size(type.get(), H5T_VARIABLE), "H5Tset_size");
+    Check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "H5Tset_cset");
+    return type;
+}
+
+// A fixed-length UTF-8 string type holding `value` (NUL-padded; HDF5 needs at least one byte).
+Id FixedUtf8StringType(const std::string& value) {
+    Id type = Check(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy");
+    Check(H5Tset_size(type.get(), std::max<std::size_t>(value.size(), 1)), "H5Tset_size");
+    Check(H5Tset_strpad(type.get(), H5T_STR_NULLPAD), "H5Tset_strpad");
     Check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "H5Tset_cset");
     return type;
 }
@@ -169,9 +182,21 @@ void WriteAttribute(hid_t object, const std::string& name, const std::vector<dou
 }
 
 void WriteAttribute(hid_t object, const std::string& name, const std::string& value) {
-    const Id type = Utf8StringType();
-    const char* text = value.c_str();
-    WriteAttributeRaw(object, name, type.get(), type.get(), ScalarSpace().get(), &text);
+    const Id type = FixedUtf8StringType(value);
+    const std::string padded = value.empty() ? std::string(1, '\0') : value;
+    WriteAttributeRaw(object, name, type.get(), type.get(), ScalarSpace().get(), padded.data());
+}
+
+void WriteStringDataset(hid_t parent, const std::string& name, const std::string& value) {
+    const Id type = FixedUtf8StringType(value);
+    const std::string padded = value.empty() ? std::string(1, '\0') : value;
+    const Id dcpl = Check(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "H5Pcreate");
+    NoTimes(dcpl.get());
+    const Id d = Check(H5Dcreate2(parent, name.c_str(), type.get(), ScalarSpace().get(),
+                                  H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+                       H5Dclose, "H5Dcreate2 " + name);
+    Check(H5Dwrite(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, padded.data()),
+          "H5Dwrite " + name);
 }
 
 // ----------------------------------------------------------------------------------------------
@@ -196,6 +221,8 @@ FileReader::FileReader(const void* image, std::size_t size, std::string name)
     Check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), "H5Pset_fclose_degree");
     // The core driver reads the file image from memory; nothing is written back.
     Check(H5Pset_fapl_core(fapl.get(), 1 << 16, false), "H5Pset_fapl_core");
+    image_ = image;
+    image_size_ = size;
     if (size == 0 || H5Pset_file_image(fapl.get(), const_cast<void*>(image), size) < 0) {
         throw MakeInputError(path_, "run file", "", "not a readable HDF5 file");
     }
@@ -399,24 +426,106 @@ std::optional<std::string> FileReader::ReadString(const std::string& object,
         throw Error(AttributeWhere(object, name), "", "must be a single string");
     }
     const Id type = Check(H5Aget_type(attr.get()), H5Tclose, "H5Aget_type " + name);
-    if (H5Tis_variable_str(type.get()) > 0) {
+    return ReadStringValue(attr.get(), type.get(), AttributeWhere(object, name), true);
+}
+
+std::optional<std::string> FileReader::ReadStringDataset(const std::string& dataset) const {
+    if (!Has(dataset)) {
+        return std::nullopt;
+    }
+    const Id d =
+        Check(H5Dopen2(file_.get(), dataset.c_str(), H5P_DEFAULT), H5Dclose, "H5Dopen2 " + dataset);
+    const Id type = Check(H5Dget_type(d.get()), H5Tclose, "H5Dget_type " + dataset);
+    const H5T_class_t cls = H5Tget_class(type.get());
+    if (cls != H5T_STRING) {
+        throw Error(dataset, ClassName(cls), "dataset type must be string");
+    }
+    const Id space = Check(H5Dget_space(d.get()), H5Sclose, "H5Dget_space " + dataset);
+    if (H5Sget_simple_extent_npoints(space.get()) != 1) {
+        throw Error(dataset, "", "must be a single string");
+    }
+    return ReadStringValue(d.get(), type.get(), dataset, false);
+}
+
+std::string FileReader::ReadStringValue(hid_t object,
+                                        hid_t type,
+                                        const std::string& where,
+                                        bool attribute) const {
+    const auto read = [&](hid_t memory, void* buffer) {
+        const herr_t status = attribute
+                                  ? H5Aread(object, memory, buffer)
+                                  : H5Dread(object, memory, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer);
+        if (status < 0) {
+            throw Error(where, "", "cannot be read");
+        }
+    };
+    if (H5Tis_variable_str(type) > 0) {
+        // Variable-length strings live in the global heap: check it before HDF5 decodes it.
+        CheckGlobalHeap(where, "variable-length string");
         const Id memory = Utf8StringType();
         char* text = nullptr;
-        Check(H5Aread(attr.get(), memory.get(), &text), "H5Aread " + name);
-        std::string value = text == nullptr ? std::string() : std::string(text);
+        read(memory.get(), &text);
+        std::string value;
+        if (text != nullptr) {
+            const std::size_t n = strnlen(text, kMaxStringBytes + 1);
+            if (n > kMaxStringBytes) {
+                H5free_memory(text);
+                throw Error(
+                    where, "more than " + std::to_string(kMaxStringBytes) + " bytes",
+                    "string limit " + std::to_string(kMaxStringBytes) + ", see docs/limits.md");
+            }
+            value.assign(text, n);
+        }
         H5free_memory(text);
         return value;
     }
-    // Fixed-length string (e.g. numpy bytes): read the bytes, drop NUL padding.
-    const std::size_t size = H5Tget_size(type.get());
+    // Fixed-length string (casmap's own, or numpy bytes): read the bytes, drop NUL padding.
+    const std::size_t size = H5Tget_size(type);
     if (size > kMaxStringBytes) {
-        throw Error(AttributeWhere(object, name), std::to_string(size) + " bytes",
+        throw Error(where, std::to_string(size) + " bytes",
                     "string limit " + std::to_string(kMaxStringBytes) + ", see docs/limits.md");
     }
     std::string value(size, '\0');
-    Check(H5Aread(attr.get(), type.get(), value.data()), "H5Aread " + name);
+    read(type, value.data());
     value.resize(std::min(value.find('\0'), value.size()));
     return value;
+}
+
+void FileReader::CheckGlobalHeap(const std::string& where, const std::string& value) const {
+    if (!heap_problem_) {
+        std::optional<std::string> problem;
+        if (image_ != nullptr) {
+            const auto* bytes = static_cast<const std::uint8_t*>(image_);
+            problem = FindCorruptGlobalHeap(image_size_, [&](std::uint64_t offset, std::size_t size,
+                                                             void* out) {
+                if (offset >= image_size_) {
+                    return std::size_t{0};
+                }
+                const std::size_t n =
+                    static_cast<std::size_t>(std::min<std::uint64_t>(size, image_size_ - offset));
+                std::memcpy(out, bytes + offset, n);
+                return n;
+            });
+        } else {
+            std::ifstream in(path_, std::ios::binary);
+            std::error_code ec;
+            const std::uintmax_t file_size = std::filesystem::file_size(path_, ec);
+            if (!in || ec) {
+                throw Error(where, value, "the file cannot be read to check its global heap");
+            }
+            problem = FindCorruptGlobalHeap(
+                file_size, [&](std::uint64_t offset, std::size_t size, void* out) {
+                    in.clear();
+                    in.seekg(static_cast<std::streamoff>(offset));
+                    in.read(static_cast<char*>(out), static_cast<std::streamsize>(size));
+                    return static_cast<std::size_t>(in.gcount());
+                });
+        }
+        heap_problem_ = problem.value_or("");
+    }
+    if (!heap_problem_->empty()) {
+        throw Error(where, value, "corrupt file: " + *heap_problem_);
+    }
 }
 
 }  // namespace casmap::io::h5

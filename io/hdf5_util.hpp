@@ -107,13 +107,17 @@ void WriteDataset(hid_t parent,
     WriteDataset(parent, name, Types<T>::File(), Types<T>::Memory(), dims, data.data());
 }
 
-/// Attributes: scalars, 1-D double arrays and UTF-8 variable-length strings (h5py reads them as
-/// str).
+/// Attributes: scalars, 1-D double arrays and UTF-8 fixed-length strings (NUL-padded; h5py
+/// reads them as bytes). casmap writes no variable-length data: those live in the global heap,
+/// which HDF5 1.10 decodes unsafely (hdf5_global_heap.hpp).
 void WriteAttribute(hid_t object, const std::string& name, double value);
 void WriteAttribute(hid_t object, const std::string& name, std::int32_t value);
 void WriteAttribute(hid_t object, const std::string& name, std::uint64_t value);
 void WriteAttribute(hid_t object, const std::string& name, const std::vector<double>& values);
 void WriteAttribute(hid_t object, const std::string& name, const std::string& value);
+
+/// Writes a scalar UTF-8 fixed-length string dataset (NUL-padded, at least one byte).
+void WriteStringDataset(hid_t parent, const std::string& name, const std::string& value);
 
 /// How messages name an attribute: "/scans attribute start_angle_rad".
 [[nodiscard]] std::string AttributeWhere(const std::string& object, const std::string& name);
@@ -166,8 +170,12 @@ public:
     [[nodiscard]] std::optional<std::vector<double>> ReadDoubles(const std::string& object,
                                                                  const std::string& name,
                                                                  std::size_t max_count) const;
+    /// A string attribute, fixed or variable length; a variable-length one is read only from a
+    /// file whose global heap passes FindCorruptGlobalHeap (else InputError naming it).
     [[nodiscard]] std::optional<std::string> ReadString(const std::string& object,
                                                         const std::string& name) const;
+    /// A scalar string dataset (absent: nullopt), with the same rules as ReadString.
+    [[nodiscard]] std::optional<std::string> ReadStringDataset(const std::string& dataset) const;
 
     /// InputError "<file>: <object> = <value> (<rule>)".
     [[nodiscard]] InputError Error(const std::string& object,
@@ -199,8 +207,19 @@ private:
                                    const std::string& name,
                                    H5T_class_t expected) const;
 
+    /// Throws InputError naming `where` unless the file's global heap is safe for HDF5 to read
+    /// (checked once per reader).
+    void CheckGlobalHeap(const std::string& where, const std::string& value) const;
+    [[nodiscard]] std::string ReadStringValue(hid_t object,
+                                              hid_t type,
+                                              const std::string& where,
+                                              bool attribute) const;
+
     std::string path_;
     Id file_;
+    const void* image_ = nullptr;  // the bytes of a file image (else the file at path_)
+    std::size_t image_size_ = 0;
+    mutable std::optional<std::string> heap_problem_;  // "" once checked and found safe
 };
 
 }  // namespace casmap::io::h5

@@ -14,7 +14,12 @@ namespace {
 namespace fs = std::filesystem;
 using h5::Id;
 
-constexpr std::int32_t kFormatVersion = 1;
+// Version 2 holds no variable-length data (no HDF5 global heap): config_yaml is a fixed-length
+// string dataset and the string attributes are fixed-length. Version 1 (config_yaml a
+// variable-length attribute) is still read, after a check of its global heap
+// (docs/run-file.md).
+constexpr std::int32_t kFormatVersion = 2;
+constexpr std::int32_t kOldestFormatVersion = 1;
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 namespace limits = core::limits;
 const h5::DimLimit kScansLimit{limits::kMaxScans, "scans"};
@@ -249,7 +254,7 @@ void WriteRunFileTo(const fs::path& tmp, const fs::path& path, const RunData& da
     if (data.seed) {
         h5::WriteAttribute(file.get(), "seed", *data.seed);
     }
-    h5::WriteAttribute(file.get(), "config_yaml", data.config_yaml);
+    h5::WriteStringDataset(file.get(), "config_yaml", data.config_yaml);
     WriteScans(file.get(), path, data);
     WritePoses(file.get(), data.poses);
     WriteMaps(file.get(), path, data.maps);
@@ -532,10 +537,11 @@ RunMaps ReadMaps(const h5::FileReader& r) {
 
 void CheckVersion(const h5::FileReader& r) {
     const std::optional<std::int64_t> version = r.ReadInteger("/", "casmap_run_format_version");
-    if (version && *version != kFormatVersion) {
+    if (version && (*version < kOldestFormatVersion || *version > kFormatVersion)) {
         throw r.Error(h5::AttributeWhere("/", "casmap_run_format_version"),
                       std::to_string(*version),
-                      "this casmap reads version " + std::to_string(kFormatVersion));
+                      "this casmap reads versions " + std::to_string(kOldestFormatVersion) + ".." +
+                          std::to_string(kFormatVersion));
     }
 }
 
@@ -553,7 +559,12 @@ RunData ReadRun(const h5::FileReader& r) {
     CheckVersion(r);
     RunData data;
     data.seed = r.ReadUnsigned("/", "seed");
-    data.config_yaml = r.ReadString("/", "config_yaml").value_or("");
+    // Version 2: the /config_yaml dataset; version 1 and third-party files: the attribute.
+    std::optional<std::string> config = r.ReadStringDataset("/config_yaml");
+    if (!config) {
+        config = r.ReadString("/", "config_yaml");
+    }
+    data.config_yaml = config.value_or("");
     ReadScans(r, data);
     ReadPoses(r, data);
     data.maps = ReadMaps(r);

@@ -25,4 +25,7 @@ with h5py.File(sys.argv[1], "r") as f:
         print(f"{len(xyz)} poses, sensor travelled {np.linalg.norm(xyz[-1] - xyz[0]):.3f} m")
     if "maps/elevation_m" in f:
         print("elevation map", f["maps/elevation_m"].shape)
-    print("config:", f.attrs["config_yaml"].splitlines()[0] if "config_yaml" in f.attrs else "-")
+    # Format version 2: a fixed-length string dataset; version 1: a variable-length attribute.
+    config = (f["config_yaml"][()].decode() if "config_yaml" in f
+              else f.attrs.get("config_yaml", "-"))
+    print("config:", config.splitlines()[0])

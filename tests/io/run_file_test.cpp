@@ -242,9 +242,9 @@ print("poses", p["stamp_s"].shape, p["xyz_m"].shape, p["quat_xyzw"].shape,
 m = f["maps"]
 print("maps", m["elevation_m"].dtype, m["elevation_m"].shape, sorted(m["filtered"].keys()),
       g(m["truth_m"][3, 1]), g(m.attrs["cell_m"]), g(m.attrs["origin_y_m"]))
-print("attrs", f.attrs["seed"], g(s.attrs["angle_step_rad"]), s.attrs["range_mode"],
-      s.attrs["range_units"])
-print("config", f.attrs["config_yaml"].splitlines()[1])
+print("attrs", f.attrs["seed"], g(s.attrs["angle_step_rad"]), s.attrs["range_mode"].decode(),
+      s.attrs["range_units"].decode())
+print("config", f["config_yaml"][()].decode().splitlines()[1], f.attrs["casmap_run_format_version"])
 mt = [h5py.h5g.get_objinfo(f.id, n.encode()).mtime
       for n in ["scans", "scans/ranges_m", "poses/xyz_m", "maps/filtered/cas"]]
 print("mtime", max(mt))
@@ -280,7 +280,7 @@ print("mtime", max(mt))
     EXPECT_EQ(lines["maps"], "maps float32 (4, 3) ['cas', 'median'] " +
                                  G(run.maps.truth_m->at(3, 1)) + " " + G(0.025) + " " + G(-1.0));
     EXPECT_EQ(lines["attrs"], "attrs 18364758544493064720 " + G(1.0 * kDeg) + " 8m mm");
-    EXPECT_EQ(lines["config"], "config motion: T");
+    EXPECT_EQ(lines["config"], "config motion: T 2");
     EXPECT_EQ(lines["mtime"], "mtime 0") << "objects carry timestamps";
 }
 

@@ -45,6 +45,9 @@ with h5py.File("run_huge_declared.h5", "w") as f:
     s.create_dataset("stamp_s", shape=(10**9,), dtype="<f8", chunks=(1024,), fillvalue=0.0)
     s.create_dataset("ranges_m", shape=(10**9, 181), dtype="<f4", chunks=(64, 181))
 
+# run_corrupt_global_heap.h5 is not written here: it is libFuzzer's input that made HDF5 1.10.8
+# loop forever in H5HG_read (docs/fuzzing.md), kept byte for byte.
+
 with open("not_hdf5.h5", "wb") as f:
     f.write(b"this is not an HDF5 file\n")
 
