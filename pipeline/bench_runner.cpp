@@ -319,10 +319,10 @@ BenchRun ScoreRun(const MappedBenchRun& run,
 
 CasScore ScoreCas(const MappedBenchRun& run,
                   const Course& course,
-                  const mapper::FilterParams& params) {
+                  const mapper::FilterParams& params,
+                  mapper::FilterMethod method) {
     const core::MapF& raw = run.mapped.elevation;
-    const mapper::FilterResult cas =
-        mapper::RunFilter(mapper::FilterMethod::kCas, raw, run.mapped.certainty, params);
+    const mapper::FilterResult cas = mapper::RunFilter(method, raw, run.mapped.certainty, params);
     const mapper::Region region = mapper::PaperRegion(raw.rows, raw.cols);
     const std::vector<Pole> poles = Poles(course.scene, run.setup.grid);
     CasScore score;

@@ -112,7 +112,8 @@ struct MappedBenchRun {
                                 const mapper::FilterParams& params,
                                 SheetMaps* sheet);
 
-/// CAS alone (for sweeps): PI and Table II shares.
+/// One CAS-kind filter alone (for sweeps; `method` cas, cas_trail or cas_terrain): PI, Table II
+/// shares, spikes and poles kept.
 struct CasScore {
     double pi = 0.0;
     mapper::ClassReport classes;
@@ -122,6 +123,7 @@ struct CasScore {
 };
 [[nodiscard]] CasScore ScoreCas(const MappedBenchRun& run,
                                 const Course& course,
-                                const mapper::FilterParams& params);
+                                const mapper::FilterParams& params,
+                                mapper::FilterMethod method = mapper::FilterMethod::kCas);
 
 }  // namespace casmap::pipeline

@@ -309,8 +309,9 @@ void WriteHeatMap(const fs::path& path, const HeatMap& map) {
     const int ch = std::clamp(500 / std::max(ny, 1), 24, 60);
     const int left = 90;
     const int top = 50;
-    cv::Mat img(top + ny * ch + 70, std::max(left + nx * cw + 150, TextWidth(map.title, 0.55) + 20),
-                CV_8UC3, cv::Scalar(255, 255, 255));
+    const int width = std::max({left + nx * cw + 150, TextWidth(map.title, 0.55) + 20,
+                                TextWidth(map.marked_legend, 0.4) + 20});
+    cv::Mat img(top + ny * ch + 70, width, CV_8UC3, cv::Scalar(255, 255, 255));
     Text(img, map.title, {10, 22}, 0.55);
     double lo = std::numeric_limits<double>::infinity();
     double hi = -lo;
@@ -333,7 +334,13 @@ void WriteHeatMap(const fs::path& path, const HeatMap& map) {
                 std::isfinite(v) ? Viridis((v - lo) / (hi - lo)) : cv::Vec3b(200, 200, 200);
             cv::rectangle(img, cell, cv::Scalar(c[0], c[1], c[2]), -1);
             const bool dark = std::isfinite(v) && (v - lo) / (hi - lo) < 0.6;
-            const std::string label = Fixed(v, 3);
+            const std::size_t at = static_cast<std::size_t>(iy * nx + ix);
+            if (at < map.marked.size() && map.marked[at]) {  // a frame inside the cell
+                cv::rectangle(img, {cell.x + 2, cell.y + 2, cell.width - 4, cell.height - 4},
+                              cv::Scalar(0, 0, 230), 3);
+            }
+            const std::string label =
+                Fixed(v, 3) + (static_cast<int>(at) == map.starred ? "*" : "");
             Text(img, label, {cell.x + cw / 2 - TextWidth(label, 0.38) / 2, cell.y + ch / 2 + 4},
                  0.38, dark ? cv::Scalar(255, 255, 255) : kBlack);
         }
@@ -344,6 +351,9 @@ void WriteHeatMap(const fs::path& path, const HeatMap& map) {
              0.38);
     }
     Text(img, map.x_name, {left + nx * cw / 2 - TextWidth(map.x_name) / 2, top + ny * ch + 40});
+    if (!map.marked_legend.empty()) {
+        Text(img, map.marked_legend, {10, top + ny * ch + 62}, 0.4);
+    }
     for (int iy = 0; iy < ny; ++iy) {
         const std::string label = Short(map.y_values[static_cast<std::size_t>(iy)]);
         Text(img, label, {left - 8 - TextWidth(label, 0.38), top + (ny - 1 - iy) * ch + ch / 2 + 4},

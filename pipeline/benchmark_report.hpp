@@ -91,6 +91,9 @@ struct HeatMap {
     std::vector<double> x_values;
     std::vector<double> y_values;
     std::vector<double> values;  // y-major: values[iy * x_values.size() + ix]
+    std::vector<bool> marked;    // empty or as `values`: cells drawn with a thick frame
+    std::string marked_legend;   // what a frame means (shown under the map)
+    int starred = -1;            // index into `values` of a cell marked with "*", or -1
 };
 void WriteHeatMap(const std::filesystem::path& path, const HeatMap& map);
 

@@ -163,6 +163,22 @@ void DistributedSession::Barrier() const {
 #endif
 }
 
+std::string DistributedSession::Broadcast(std::string text) const {
+#ifdef CASMAP_WITH_MPI
+    if (ranks_ > 1) {
+        std::uint64_t size = text.size();
+        Check(MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD), "MPI_Bcast");
+        text.resize(static_cast<std::size_t>(size));
+        constexpr std::uint64_t kChunk = 1U << 30;
+        for (std::uint64_t at = 0; at < size; at += kChunk) {
+            const int n = static_cast<int>(std::min(kChunk, size - at));
+            Check(MPI_Bcast(text.data() + at, n, MPI_CHAR, 0, MPI_COMM_WORLD), "MPI_Bcast");
+        }
+    }
+#endif
+    return text;
+}
+
 std::map<std::size_t, std::string> DistributeWork(const DistributedSession& session,
                                                   const std::vector<std::size_t>& items,
                                                   int threads,

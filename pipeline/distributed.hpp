@@ -38,6 +38,8 @@ public:
     [[nodiscard]] int ranks() const { return ranks_; }
     /// Blocks until every rank arrives (no-op with one rank).
     void Barrier() const;
+    /// Rank 0's `text` on every rank (collective: every rank calls it; one rank: `text`).
+    [[nodiscard]] std::string Broadcast(std::string text) const;
 
 private:
     struct LocalTag {};

@@ -1,22 +1,25 @@
+// `casmap sweep`'s options: axes, seeds, training and held-out sets, and their validation
+// (sweep.hpp). The runs are in sweep_run.cpp, the outputs in sweep_report.cpp.
 #include "casmap/pipeline/sweep.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <map>
 #include <optional>
+#include <set>
 
 #include "casmap/core/input_error.hpp"
-#include "casmap/core/parallel.hpp"
-#include "casmap/io/atomic_file.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
+#include "casmap/pipeline/sweep_detail.hpp"
 
 namespace casmap::pipeline {
 namespace {
-namespace fs = std::filesystem;
 
 constexpr std::size_t kMaxPoints = 10000;
+constexpr int kMaxGrowRounds = 20;
+
+const char* const kAllowed =
+    "unknown parameter; allowed: A, G, B, h_sum_min, a, E, k, speed, support_tol_m, "
+    "support_min, ground_k, ground_quantile";
 
 double ParseNumber(const std::string& text,
                    const std::string& assignment,
@@ -34,7 +37,26 @@ double ParseNumber(const std::string& text,
     return v;
 }
 
-/// Grid points, row-major over the axes (the first axis varying slowest).
+bool IsSweepable(const std::string& name) {
+    const std::vector<std::string>& names = SweepableParameters();
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+std::uint64_t ParseSeed(const std::string& text, const std::string& all, const std::string& field) {
+    const bool digits =
+        !text.empty() && text.size() <= 19 &&
+        std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (!digits) {
+        throw MakeInputError("", field, all,
+                             "expected seeds like 1-2 or 3,7 (non-negative integers)");
+    }
+    return std::stoull(text);
+}
+
+}  // namespace
+
+namespace detail {
+
 std::vector<std::vector<double>> GridPoints(const std::vector<SweepAxis>& axes) {
     std::vector<std::vector<double>> points = {{}};
     for (const SweepAxis& axis : axes) {
@@ -53,7 +75,6 @@ std::vector<std::vector<double>> GridPoints(const std::vector<SweepAxis>& axes) 
     return points;
 }
 
-/// The filter overrides of one grid point (NAME=VALUE for FilterParams::Set).
 std::vector<std::string> PointOverrides(const SweepOptions& opt, const std::vector<double>& point) {
     std::vector<std::string> out = opt.fixed;
     for (std::size_t i = 0; i < opt.axes.size(); ++i) {
@@ -77,23 +98,11 @@ int AxisIndex(const SweepOptions& opt, const std::string& name) {
     return -1;
 }
 
-/// Speeds to simulate (0: the rig's own) and `a` values to map with.
 std::vector<double> Speeds(const SweepOptions& opt) {
     const int i = AxisIndex(opt, "speed");
     return i >= 0 ? opt.axes[static_cast<std::size_t>(i)].values : std::vector<double>{0.0};
 }
 
-std::vector<int> AValues(const SweepOptions& opt) {
-    const int i = AxisIndex(opt, "a");
-    std::vector<int> out;
-    for (const double v :
-         i >= 0 ? opt.axes[static_cast<std::size_t>(i)].values : std::vector<double>{3.0}) {
-        out.push_back(static_cast<int>(v));
-    }
-    return out;
-}
-
-/// Setups per speed x test (test-major within a speed).
 std::vector<std::vector<SimSetup>> Setups(const SweepOptions& opt,
                                           const BenchSettings& settings,
                                           const std::vector<std::string>& tests) {
@@ -110,11 +119,54 @@ std::vector<std::vector<SimSetup>> Setups(const SweepOptions& opt,
     return setups;
 }
 
-}  // namespace
+void CheckAxisValue(const SweepOptions& opt, const std::string& name, double v) {
+    if (name == "speed" && !(v > 0.0 && v <= rig::TableLimits::kMaxSpeedMS)) {
+        throw MakeInputError("", "axes", "speed=" + FormatNumber(v),
+                             "allowed: > 0 and <= 1 m/s (the table's limit)");
+    }
+    if (name == "a" && (v != std::floor(v) || v < 1 || v > 1000)) {
+        throw MakeInputError("", "axes", "a=" + FormatNumber(v), "allowed: integer 1..1000");
+    }
+    if (name == "speed") {
+        return;
+    }
+    mapper::FilterParams check;
+    for (const std::string& f : opt.fixed) {
+        check.SetAssignment(f);
+    }
+    try {
+        check.Set(name, FormatNumber(v));
+        check.Validate();
+    } catch (const InputError& e) {
+        throw MakeInputError("", "axes", name + "=" + FormatNumber(v), e.what());
+    }
+}
+
+bool AxisValueAllowed(const SweepOptions& opt, const std::string& name, double value) {
+    try {
+        CheckAxisValue(opt, name, value);
+    } catch (const InputError&) {
+        return false;
+    }
+    return true;
+}
+
+mapper::FilterMethod SweepFilter(const SweepOptions& opt) {
+    return mapper::ParseFilterMethod(opt.filter, "filter");
+}
+
+}  // namespace detail
 
 const std::vector<std::string>& SweepableParameters() {
-    static const std::vector<std::string> names = {"A", "G", "B", "h_sum_min",
-                                                   "a", "E", "k", "speed"};
+    static const std::vector<std::string> names = {"A",           "G",        "B",
+                                                   "h_sum_min",   "a",        "E",
+                                                   "k",           "speed",    "support_tol_m",
+                                                   "support_min", "ground_k", "ground_quantile"};
+    return names;
+}
+
+const std::vector<std::string>& SweepableFilters() {
+    static const std::vector<std::string> names = {"cas", "cas_trail", "cas_terrain"};
     return names;
 }
 
@@ -126,10 +178,8 @@ SweepAxis ParseSweepAxis(const std::string& assignment, const std::string& field
     }
     SweepAxis axis;
     axis.name = assignment.substr(0, eq);
-    const std::vector<std::string>& names = SweepableParameters();
-    if (std::find(names.begin(), names.end(), axis.name) == names.end()) {
-        throw MakeInputError("", field, axis.name,
-                             "unknown parameter; allowed: A, G, B, h_sum_min, a, E, k, speed");
+    if (!IsSweepable(axis.name)) {
+        throw MakeInputError("", field, axis.name, kAllowed);
     }
     const std::string range = assignment.substr(eq + 1);
     const std::size_t c1 = range.find(':');
@@ -156,13 +206,44 @@ SweepAxis ParseSweepAxis(const std::string& assignment, const std::string& field
     return axis;
 }
 
+std::vector<std::uint64_t> ParseSeeds(const std::string& text, const std::string& field) {
+    std::set<std::uint64_t> seeds;
+    std::size_t pos = 0;
+    while (pos <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', pos), text.size());
+        const std::string part = text.substr(pos, comma - pos);
+        const std::size_t dash = part.find('-');
+        if (dash == std::string::npos) {
+            seeds.insert(ParseSeed(part, text, field));
+        } else {
+            const std::uint64_t lo = ParseSeed(part.substr(0, dash), text, field);
+            const std::uint64_t hi = ParseSeed(part.substr(dash + 1), text, field);
+            if (lo > hi || hi - lo >= 10000) {
+                throw MakeInputError("", field, text,
+                                     "a range FROM-TO needs FROM <= TO, at most 10000 seeds");
+            }
+            for (std::uint64_t s = lo; s <= hi; ++s) {
+                seeds.insert(s);
+            }
+        }
+        pos = comma + 1;
+    }
+    return {seeds.begin(), seeds.end()};
+}
+
+std::vector<std::uint64_t> SweepOptions::TrainSeeds() const {
+    return seeds.empty() ? std::vector<std::uint64_t>{seed} : seeds;
+}
+
 void SweepOptions::Validate() const {
-    const std::vector<std::string>& names = SweepableParameters();
+    if (std::find(SweepableFilters().begin(), SweepableFilters().end(), filter) ==
+        SweepableFilters().end()) {
+        throw MakeInputError("", "filter", filter, "allowed: cas, cas_trail, cas_terrain");
+    }
     for (std::size_t i = 0; i < axes.size(); ++i) {
         const SweepAxis& axis = axes[i];
-        if (std::find(names.begin(), names.end(), axis.name) == names.end()) {
-            throw MakeInputError("", "axes", axis.name,
-                                 "unknown parameter; allowed: A, G, B, h_sum_min, a, E, k, speed");
+        if (!IsSweepable(axis.name)) {
+            throw MakeInputError("", "axes", axis.name, kAllowed);
         }
         if (axis.values.empty()) {
             throw MakeInputError("", "axes", axis.name, "at least one value");
@@ -173,22 +254,45 @@ void SweepOptions::Validate() const {
             }
         }
         for (const double v : axis.values) {
-            if (axis.name == "speed" && !(v > 0.0 && v <= rig::TableLimits::kMaxSpeedMS)) {
-                throw MakeInputError("", "axes", "speed=" + FormatNumber(v),
-                                     "allowed: > 0 and <= 1 m/s (the table's limit)");
-            }
-            if (axis.name == "a" && (v != std::floor(v) || v < 1 || v > 1000)) {
-                throw MakeInputError("", "axes", "a=" + FormatNumber(v),
-                                     "allowed: integer 1..1000");
+            if (axis.name == "speed" || axis.name == "a") {
+                detail::CheckAxisValue(*this, axis.name, v);
             }
         }
     }
+    if (grow < 0 || grow > kMaxGrowRounds) {
+        throw MakeInputError("", "grow", std::to_string(grow), "allowed: 0..20 rounds");
+    }
     CheckCoursesAndTests(courses, tests);
+    if (!test_courses.empty()) {
+        try {
+            CheckCoursesAndTests(test_courses, tests);
+        } catch (const InputError& e) {
+            throw MakeInputError("", "test_courses", "", e.what());
+        }
+    }
+    const std::vector<std::uint64_t> train = TrainSeeds();
+    if (HasHeldOut()) {
+        const std::vector<std::uint64_t> held = test_seeds.empty() ? train : test_seeds;
+        const std::vector<int> held_courses = test_courses.empty() ? courses : test_courses;
+        for (const std::uint64_t s : held) {
+            for (const int c : held_courses) {
+                if (std::find(train.begin(), train.end(), s) != train.end() &&
+                    std::find(courses.begin(), courses.end(), c) != courses.end()) {
+                    throw MakeInputError(
+                        "", test_seeds.empty() ? "test_courses" : "test_seeds",
+                        "seed " + std::to_string(s) + ", course " + std::to_string(c),
+                        "a held-out run must not be a training run (give other seeds or courses)");
+                }
+            }
+        }
+    }
     const BenchSettings settings = ResolveBenchSettings(courses_dir, rig_path, sensor_path, seed);
-    (void)Setups(*this, settings, SortedTests(tests));
-    for (const auto& p : GridPoints(axes)) {
+    (void)detail::Setups(*this, settings, SortedTests(tests));
+    const mapper::FilterMethod method = detail::SweepFilter(*this);
+    (void)method;
+    for (const auto& p : detail::GridPoints(axes)) {
         mapper::FilterParams check;
-        for (const std::string& o : PointOverrides(*this, p)) {
+        for (const std::string& o : detail::PointOverrides(*this, p)) {
             check.SetAssignment(o);
         }
         check.Validate();
@@ -220,100 +324,6 @@ SweepStats Summarise(const std::vector<double>& values) {
     s.min = *std::min_element(finite.begin(), finite.end());
     s.max = *std::max_element(finite.begin(), finite.end());
     return s;
-}
-
-SweepResult RunSweep(const SweepOptions& options, const core::ProgressFn& progress) {
-    const auto start = std::chrono::steady_clock::now();
-    options.Validate();  // every point and speed, before simulating anything
-    const BenchSettings settings = ResolveBenchSettings(options.courses_dir, options.rig_path,
-                                                        options.sensor_path, options.seed);
-    const std::vector<int>& courses = options.courses;
-    const std::vector<std::string> tests = SortedTests(options.tests);
-    const std::vector<std::vector<double>> points = GridPoints(options.axes);
-    const std::vector<double> speeds = Speeds(options);
-    const std::vector<int> a_values = AValues(options);
-    const int speed_axis = AxisIndex(options, "speed");
-    const int a_axis = AxisIndex(options, "a");
-    const std::vector<std::vector<SimSetup>> setups = Setups(options, settings, tests);
-    const int threads = core::ResolveThreads(options.threads);
-
-    const std::vector<Course> loaded = LoadCourses(settings, courses, setups[0][0].grid, threads);
-    std::vector<core::Trajectory> trajectories(speeds.size() * tests.size());
-    core::ParallelFor(trajectories.size(), threads, [&](std::size_t i) {
-        trajectories[i] = RigTrajectory(setups[i / tests.size()][i % tests.size()], core::Scene{});
-    });
-
-    // One simulated run per speed x course x test; every point is scored on it.
-    const std::size_t runs = speeds.size() * courses.size() * tests.size();
-    std::vector<std::vector<std::optional<CasScore>>> scores(runs);  // [run][point]
-    SweepResult result;
-    result.run_names.resize(runs);
-    result.run_configs.resize(runs);
-    core::ProgressCounter counter(progress, runs);
-    core::ParallelFor(runs, threads, [&](std::size_t r) {
-        const std::size_t s = r / (courses.size() * tests.size());
-        const std::size_t c = (r / tests.size()) % courses.size();
-        const std::size_t t = r % tests.size();
-        SimSetup setup = setups[s][t];
-        setup.scene_path = loaded[c].path;
-        const SimulatedRun sim =
-            SimulateBenchRun(setup, loaded[c], trajectories[s * tests.size() + t]);
-        std::map<int, MappedBenchRun> by_a;
-        for (const int a : a_values) {
-            by_a.emplace(a, MapBenchRun(setup, loaded[c], sim, a));
-        }
-        result.run_configs[r] = by_a.begin()->second.config_yaml;
-        result.run_names[r] = RunName(courses[c], tests[t]) +
-                              (speed_axis >= 0 ? "_speed" + FormatNumber(speeds[s]) : "");
-        scores[r].assign(points.size(), std::nullopt);
-        for (std::size_t p = 0; p < points.size(); ++p) {
-            if (speed_axis >= 0 && points[p][static_cast<std::size_t>(speed_axis)] != speeds[s]) {
-                continue;  // another speed's run
-            }
-            const int a = a_axis >= 0
-                              ? static_cast<int>(points[p][static_cast<std::size_t>(a_axis)])
-                              : a_values.front();
-            const MappedBenchRun& run = by_a.at(a);
-            scores[r][p] =
-                ScoreCas(run, loaded[c], RunFilterParams(run, PointOverrides(options, points[p])));
-        }
-        counter.Advance();
-    });
-    // Per point: statistics over the runs that apply to it.
-    result.points.resize(points.size());
-    for (std::size_t p = 0; p < points.size(); ++p) {
-        SweepPoint& point = result.points[p];
-        point.values = points[p];
-        std::vector<double> pi;
-        double shares[3] = {0.0, 0.0, 0.0};
-        double spikes = 0.0;
-        for (std::size_t r = 0; r < runs; ++r) {
-            if (const std::optional<CasScore>& sc = scores[r][p]) {
-                pi.push_back(sc->pi);
-                shares[0] += sc->classes.all.removed_pct;
-                shares[1] += sc->classes.all.filled_pct;
-                shares[2] += sc->classes.all.untouched_pct;
-                spikes += static_cast<double>(sc->spikes);
-                point.runs_all_poles_kept += sc->poles_kept == sc->poles ? 1 : 0;
-            }
-        }
-        point.pi = Summarise(pi);
-        const double n = pi.empty() ? std::nan("") : static_cast<double>(pi.size());
-        point.mixed_pct = shares[0] / n;
-        point.missing_pct = shares[1] / n;
-        point.untouched_pct = shares[2] / n;
-        point.spikes_mean = spikes / n;
-        const SweepStats& best = result.points[result.best].pi;
-        if (std::isfinite(point.pi.mean) &&
-            (!std::isfinite(best.mean) || point.pi.mean < best.mean)) {
-            result.best = p;
-        }
-    }
-    result.options = options;
-    result.threads = threads;
-    result.elapsed_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return result;
 }
 
 }  // namespace casmap::pipeline

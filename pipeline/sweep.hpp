@@ -1,14 +1,18 @@
 #pragma once
 
-// A grid search over CAS parameters (A, G, B, h_sum_min, a, E, k) and the table speed on chosen
-// courses and tests: the mean and spread of CAS's PI (Eq. 11) per grid point. Every course x
-// test x speed is simulated once; `a` re-maps the simulated scans, every other parameter only
-// re-runs the filter. Never prints; progress through a callback.
+// A grid search over the parameters of CAS or one of its variants (cas_trail, cas_terrain) and
+// the table speed: per grid point the mean and spread of the filter's PI (Eq. 11), its surviving
+// spikes and the poles it keeps, on TRAINING runs (seeds x courses x tests); the best point is
+// chosen on those runs alone and then scored, beside the paper's defaults, on HELD-OUT runs
+// (other seeds and/or courses). The grid grows outward while the best point sits on an edge.
+// Runs spread over MPI ranks like `casmap bench` (distributed.hpp). Never prints; progress
+// through a callback.
 
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,8 +21,14 @@
 
 namespace casmap::pipeline {
 
-/// Parameters a sweep axis may name: A, G, B, h_sum_min, a, E, k, speed.
+class DistributedSession;
+
+/// Parameters a sweep axis may name: A, G, B, h_sum_min, a, E, k, speed, and the variants'
+/// support_tol_m, support_min (cas_trail), ground_k, ground_quantile (cas_terrain).
 [[nodiscard]] const std::vector<std::string>& SweepableParameters();
+
+/// Filters a sweep tunes: cas, cas_trail, cas_terrain.
+[[nodiscard]] const std::vector<std::string>& SweepableFilters();
 
 /// One swept parameter and its values.
 struct SweepAxis {
@@ -29,19 +39,36 @@ struct SweepAxis {
 /// "NAME=FROM:TO:STEP" -> FROM, FROM + STEP, ... <= TO; InputError naming `field`.
 [[nodiscard]] SweepAxis ParseSweepAxis(const std::string& assignment, const std::string& field);
 
+/// "1-2", "3,7", "1,4-6" -> sorted unique seeds; InputError naming `field`.
+[[nodiscard]] std::vector<std::uint64_t> ParseSeeds(const std::string& text,
+                                                    const std::string& field);
+
 struct SweepOptions {
     std::vector<SweepAxis> axes;              // each parameter once; <= 10000 points
     std::vector<std::string> fixed;           // NAME=VALUE filter settings at every point
-    std::vector<int> courses = AllCourses();  // each in 1..16
-    std::vector<std::string> tests = {"T"};   // subset of T, TR, TP, TRP
-    std::uint64_t seed = 1;                   // simulator seed of every run
+    std::string filter = "cas";               // cas, cas_trail or cas_terrain
+    std::vector<int> courses = AllCourses();  // training courses, each in 1..16
+    std::vector<std::string> tests = {"T"};   // subset of T, TR, TP, TRP (training and held-out)
+    std::uint64_t seed = 1;                   // training seed when `seeds` is empty
+    std::vector<std::uint64_t> seeds;         // training seeds (empty: {seed})
+    std::vector<std::uint64_t> test_seeds;    // held-out seeds (empty: the training seeds)
+    std::vector<int> test_courses;            // held-out courses (empty: the training courses)
+    int grow = 0;                             // growth rounds (0..20): extend edge axes
     std::string courses_dir;                  // empty: CoursesDir()
     std::string rig_path;                     // rig YAML; empty: the paper course
     std::string sensor_path;                  // LMS 200 YAML; empty: built-in config
     int threads = 0;                          // 0 = all cores; results never depend on it
+    const DistributedSession* session = nullptr;  // null: local threads only
 
-    /// Throws InputError naming the field (axes, fixed, courses, tests, courses_dir, ...),
-    /// the value and the rule; checks every grid point's filter settings and every speed.
+    /// The training seeds: `seeds`, or {seed}.
+    [[nodiscard]] std::vector<std::uint64_t> TrainSeeds() const;
+    /// True when held-out runs are asked for (test_seeds or test_courses given).
+    [[nodiscard]] bool HasHeldOut() const { return !test_seeds.empty() || !test_courses.empty(); }
+
+    /// Throws InputError naming the field (axes, fixed, filter, courses, tests, seeds,
+    /// test_seeds, test_courses, grow, courses_dir, ...), the value and the rule; checks every
+    /// grid point's filter settings and every speed, and that no held-out run (seed, course) is
+    /// also a training run.
     void Validate() const;
 };
 
@@ -57,37 +84,81 @@ struct SweepStats {
 
 struct SweepPoint {
     std::vector<double> values;  // one per axis
-    SweepStats pi;               // CAS's PI over the runs of this point
-    double mixed_pct = 0.0;      // mean Table II shares of CAS over those runs
+    SweepStats pi;               // the filter's PI over the runs of this point
+    double mixed_pct = 0.0;      // mean Table II shares over those runs
     double missing_pct = 0.0;
     double untouched_pct = 0.0;
-    double spikes_mean = 0.0;             // CAS's surviving spikes, mean over the runs
-    std::size_t runs_all_poles_kept = 0;  // runs in which CAS kept every pole of the course
+    double spikes_mean = 0.0;             // surviving spikes, mean over the runs
+    std::int64_t spikes_total = 0;        // and their sum
+    std::size_t runs_scored = 0;          // runs this point was scored on
+    std::size_t runs_all_poles_kept = 0;  // runs in which every pole of the course was kept
+    std::size_t poles = 0;                // poles over the runs (a pole counts once per run)
+    std::size_t poles_kept = 0;           // of those, kept (ScoreRun's rule)
+
+    [[nodiscard]] bool KeepsEveryPole() const {
+        return runs_scored > 0 && runs_all_poles_kept == runs_scored;
+    }
+};
+
+/// One growth round: the axis extended, its new values, the best point that caused it.
+struct SweepGrowth {
+    int round = 0;
+    std::string axis;
+    std::vector<double> added;
+    std::vector<double> best_before;  // the best point's values before the round
+};
+
+/// One filter's score on one held-out run.
+struct HeldOutScore {
+    double pi = std::numeric_limits<double>::quiet_NaN();
+    std::int64_t spikes = 0;
+    std::size_t poles = 0;
+    std::size_t poles_kept = 0;
+};
+
+struct HeldOutRun {
+    std::string name;  // "seed3_course04_T"
+    std::uint64_t seed = 0;
+    int course = 0;
+    std::string test;
+    HeldOutScore chosen;  // the chosen point
+    HeldOutScore paper;   // CAS at the paper's defaults (no overrides) on the same run
 };
 
 struct SweepResult {
-    SweepOptions options;                  // as given (axes, fixed, courses, tests, seed)
+    SweepOptions options;                  // as given, axes as grown
     std::vector<SweepPoint> points;        // row-major over the axes, first axis slowest
-    std::size_t best = 0;                  // lowest finite mean PI
-    std::vector<std::string> run_names;    // "course04_T" (+ "_speed0.5" when speed is swept)
-    std::vector<std::string> run_configs;  // effective configuration YAML per run
+    std::size_t best = 0;                  // the chosen point (rule in best_rule)
+    bool best_keeps_every_pole = false;    // false: no point kept every pole (fallback rule)
+    std::string best_rule;                 // the rule that chose `best`, in words
+    std::vector<std::size_t> pareto;       // non-dominated points (PI, poles kept, spikes)
+    std::vector<SweepGrowth> growth;       // growth rounds, in order
+    std::vector<std::string> run_names;    // training runs: "course04_T" (+ "_seedS", "_speedV")
+    std::vector<std::string> run_configs;  // effective configuration YAML per training run
+    std::vector<HeldOutRun> held_out;      // empty without held-out runs
     double elapsed_s = 0.0;
     int threads = 1;
+    int ranks = 1;
 };
 
-/// Validates `options`, then simulates every speed x course x test once and scores every grid
-/// point on the runs it applies to. `progress` is told once per simulated run.
+/// Validates `options`, then simulates every training run (seed x speed x course x test) and
+/// scores every grid point on the runs it applies to; grows the grid while the best point sits
+/// on an edge (options.grow rounds at most); then scores the chosen point and the paper's CAS on
+/// the held-out runs. `progress` is told once per simulated run (rank 0). Under MPI every rank
+/// must call it; rank 0 gets the full result, other ranks the same result (rank 0's, broadcast).
 [[nodiscard]] SweepResult RunSweep(const SweepOptions& options,
                                    const core::ProgressFn& progress = {});
 
-/// sweep.json: parameters, fixed, courses, tests, seed, points, best_point, elapsed_s, threads.
+/// sweep.json: parameters, filter, fixed, train/test sets, points, best_point, best_rule,
+/// pareto_front, growth, held_out, elapsed_s, threads.
 [[nodiscard]] std::string SweepJson(const SweepResult& result);
 
-/// The terminal table: one line per point (values, PI mean/std/min/max, runs), best marked.
+/// The terminal table: one line per point (values, PI mean/std/min/max, spikes, poles kept),
+/// best marked, then the growth path and the held-out comparison.
 [[nodiscard]] std::string SweepTable(const SweepResult& result);
 
-/// Writes DIR/sweep.json, runs/<run>.yaml and, for two axes, heatmap.png. Creates DIR.
-/// Returns the sweep.json text.
+/// Writes DIR/sweep.json, runs/<run>.yaml and, for two axes, heatmap.png (points keeping every
+/// pole framed, the chosen one starred). Creates DIR. Returns the sweep.json text.
 std::string WriteSweepOutputs(const std::filesystem::path& dir, const SweepResult& result);
 
 }  // namespace casmap::pipeline

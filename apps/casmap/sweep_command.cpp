@@ -1,8 +1,10 @@
-// casmap sweep [--set NAME=FROM:TO:STEP]... [--fix NAME=VALUE]... [--courses ...]
-//              [--tests ...] [--seed N] [--json FILE] [--out DIR] [--sensor LMS200.yaml]
-// A grid over CAS parameters (A, G, B, h_sum_min, a, E, k) and the table speed
-// (pipeline::RunSweep): the mean and spread of CAS's PI (Eq. 11) per grid point. Outputs (DIR,
-// default out/sweep): sweep.json, runs/*.yaml and, for two swept parameters, heatmap.png.
+// casmap sweep [--set NAME=FROM:TO:STEP]... [--fix NAME=VALUE]... [--filter cas|cas_trail|...]
+//              [--courses|--train-courses ...] [--seed N|--train-seeds ...] [--test-seeds ...]
+//              [--test-courses ...] [--grow N] [--tests ...] [--json FILE] [--out DIR] ...
+// A grid over the parameters of CAS or a variant and the table speed (pipeline::RunSweep): PI,
+// spikes and poles kept per grid point on training runs, the best point scored on held-out
+// runs. Outputs (DIR, default out/sweep; rank 0 under mpirun): sweep.json, runs/*.yaml and,
+// for two swept parameters, heatmap.png.
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -14,6 +16,7 @@
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/mapper/filter_params.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
+#include "casmap/pipeline/distributed.hpp"
 #include "casmap/pipeline/sweep.hpp"
 
 namespace casmap::app {
@@ -22,6 +25,10 @@ namespace {
 struct SweepFlags {
     std::vector<std::string> set;
     std::string courses = "1-16";
+    std::string train_courses;
+    std::string train_seeds;
+    std::string test_seeds;
+    std::string test_courses;
     std::string tests = "T";
     std::string json;
     std::string out = "out/sweep";
@@ -31,6 +38,11 @@ struct SweepFlags {
 const FlagNames kFlags = {{"axes", "--set"},
                           {"fixed", "--fix"},
                           {"courses", "--courses"},
+                          {"filter", "--filter"},
+                          {"seeds", "--train-seeds"},
+                          {"test_seeds", "--test-seeds"},
+                          {"test_courses", "--test-courses"},
+                          {"grow", "--grow"},
                           {"tests", "--tests"},
                           {"courses_dir", "--courses-dir"},
                           {"rig_path", "--rig"},
@@ -42,7 +54,18 @@ void RunSweep(SweepFlags& flags, const CommonOptions& common) {
     for (const std::string& s : flags.set) {
         opt.axes.push_back(pipeline::ParseSweepAxis(s, "--set"));
     }
-    opt.courses = pipeline::ParseCourses(flags.courses, "--courses");
+    opt.courses = flags.train_courses.empty()
+                      ? pipeline::ParseCourses(flags.courses, "--courses")
+                      : pipeline::ParseCourses(flags.train_courses, "--train-courses");
+    if (!flags.train_seeds.empty()) {
+        opt.seeds = pipeline::ParseSeeds(flags.train_seeds, "--train-seeds");
+    }
+    if (!flags.test_seeds.empty()) {
+        opt.test_seeds = pipeline::ParseSeeds(flags.test_seeds, "--test-seeds");
+    }
+    if (!flags.test_courses.empty()) {
+        opt.test_courses = pipeline::ParseCourses(flags.test_courses, "--test-courses");
+    }
     opt.tests = pipeline::ParseTests(flags.tests, "--tests");
     opt.threads = common.threads;
     for (const std::string& fixed : opt.fixed) {  // name the flag the user wrote, not --set
@@ -61,19 +84,29 @@ void RunSweep(SweepFlags& flags, const CommonOptions& common) {
     if (!flags.json.empty()) {
         pipeline::CheckWritableFile(flags.json, "--json");
     }
-    io::EnsureDirectory(flags.out);
+    const pipeline::DistributedSession session;  // MPI under mpirun/srun, else one rank
+    opt.session = &session;
+    if (session.rank() == 0) {
+        io::EnsureDirectory(flags.out);
+    }
     pipeline::SweepResult result;
     {
         ProgressBar bar("sweep");
-        result = pipeline::RunSweep(opt, bar.Fn());
+        result = pipeline::RunSweep(opt, session.rank() == 0 ? bar.Fn() : core::ProgressFn{});
+    }
+    if (session.rank() != 0) {
+        return;  // rank 0 writes every output
     }
     const std::string json = pipeline::WriteSweepOutputs(flags.out, result);
     if (!flags.json.empty()) {
         io::WriteTextAtomically(flags.json, json);
     }
     std::fputs(pipeline::SweepTable(result).c_str(), stdout);
-    std::printf("%zu point(s) x %zu run(s) in %.1f s on %d threads -> %s\n", result.points.size(),
-                result.run_names.size(), result.elapsed_s, result.threads, flags.out.c_str());
+    std::printf(
+        "%zu point(s) x %zu training run(s) + %zu held-out in %.1f s on %d threads x %d "
+        "rank(s) -> %s\n",
+        result.points.size(), result.run_names.size(), result.held_out.size(), result.elapsed_s,
+        result.threads, session.ranks(), flags.out.c_str());
 }
 
 }  // namespace
@@ -84,12 +117,27 @@ void AddSweepCommand(CLI::App& app, CommonOptions& common) {
     CLI::App* sub = app.add_subcommand(
         "sweep", "Grid over CAS parameters and speed: mean and spread of PI per point");
     sub->add_option("--set", flags->set,
-                    "NAME=FROM:TO:STEP, NAME in A, G, B, h_sum_min, a, E, k, speed; repeatable");
+                    "NAME=FROM:TO:STEP, NAME in A, G, B, h_sum_min, a, E, k, speed, "
+                    "support_tol_m, support_min, ground_k, ground_quantile; repeatable");
     sub->add_option("--fix", opt.fixed, "fixed filter parameter NAME=VALUE; repeatable");
-    sub->add_option("--courses", flags->courses, "courses, e.g. 1-16, 4 or 1,4,7-9")
+    sub->add_option("--courses", flags->courses, "training courses, e.g. 1-16, 4 or 1,4,7-9")
+        ->capture_default_str();
+    sub->add_option("--train-courses", flags->train_courses, "the same as --courses")
+        ->excludes(sub->get_option("--courses"));
+    sub->add_option("--filter", opt.filter, "filter to tune: cas, cas_trail, cas_terrain")
+        ->capture_default_str();
+    sub->add_option("--train-seeds", flags->train_seeds,
+                    "training seeds, e.g. 1-2 or 1,5 (default: --seed)");
+    sub->add_option("--test-seeds", flags->test_seeds,
+                    "held-out seeds scoring the chosen point (default: the training seeds)");
+    sub->add_option("--test-courses", flags->test_courses,
+                    "held-out courses (default: the training courses)");
+    sub->add_option("--grow", opt.grow,
+                    "growth rounds: extend an axis while the best point sits on its edge (0..20)")
         ->capture_default_str();
     sub->add_option("--tests", flags->tests, "tests: T,TR,TP,TRP")->capture_default_str();
-    sub->add_option("--seed", opt.seed, "simulator seed (every run)")->capture_default_str();
+    sub->add_option("--seed", opt.seed, "simulator seed of the training runs")
+        ->capture_default_str();
     sub->add_option("--json", flags->json, "also write sweep.json here");
     sub->add_option("--out", flags->out, "output directory (sweep.json, heat map, configs)")
         ->capture_default_str();

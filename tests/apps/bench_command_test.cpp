@@ -118,6 +118,11 @@ TEST(BenchCommand, BadInputExitsTwoWithOneLineAndNoJson) {
         {"sweep --set Q=1:5:1", "Q"},
         {"sweep --set B=1:x:1", "B=1:x:1"},
         {"sweep --courses 4 --tests Z", "--tests"},
+        {"sweep --courses 4 --filter median", "--filter = median"},
+        {"sweep --courses 4 --train-seeds 1-2 --test-seeds 2", "--test-seeds = seed 2, course 4"},
+        {"sweep --courses 4 --train-seeds x", "--train-seeds = x"},
+        {"sweep --courses 4 --grow 99", "--grow = 99"},
+        {"sweep --courses 4 --test-courses 17", "--test-courses"},
     };
     for (const Case& c : cases) {
         const Result r = Casmap(c.args + " --out " + (dir / "out").string());
@@ -176,6 +181,46 @@ assert len({p["pi_mean"] for p in pts}) == 4, pts
 print("ok")
 )PY";
     const Result check = Shell("/usr/bin/python3 " + script + " " + (dir / "s.json").string());
+    EXPECT_EQ(check.code, 0) << check.output;
+}
+
+// Choosing on training seeds, scoring on a held-out seed, growing the grid: sweep.json says which
+// point was chosen by which rule, the held-out figures beside the paper's, and the Pareto front.
+TEST(SweepCommand, TrainsGrowsAndScoresHeldOut) {
+    if (!HaveSimulator()) {
+        GTEST_SKIP() << "built without the simulator";
+    }
+    const fs::path dir = FreshDir("sweep_held");
+    const Result r = Casmap(
+        "sweep --set A=12:24:12 --set h_sum_min=7:9:2 --courses 4 --tests T --train-seeds 1 "
+        "--test-seeds 2 --grow 2 --out " +
+        (dir / "s").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("held-out runs (1)"), std::string::npos) << r.output;
+    const std::string script = dir.string() + "/check.py";
+    std::ofstream(script) << R"PY(
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["filter"] == "cas" and d["seeds"] == [1], d
+pts = d["points"]
+best = pts[d["best_point"]]
+assert best["params"] == d["best_params"]
+if any(p["keeps_every_pole"] for p in pts):
+    assert best["keeps_every_pole"] and d["best_keeps_every_pole"]
+    assert all(best["pi_mean"] <= p["pi_mean"] for p in pts if p["keeps_every_pole"])
+for g in d["growth"]:
+    assert g["axis"] in ("A", "h_sum_min") and g["round"] >= 1
+assert len(d["pareto_front"]) >= 1
+h = d["held_out"]
+assert h["seeds"] == [2] and h["courses"] == [4] and h["chosen_params"] == d["best_params"]
+assert [r["name"] for r in h["runs"]] == ["seed2_course04_T"]
+t = h["by_test"]["T"]
+assert t["chosen"]["runs"] == 1 and t["paper"]["runs"] == 1
+assert t["chosen"]["pi_mean"] == h["runs"][0]["chosen"]["pi"]
+print("ok")
+)PY";
+    const Result check =
+        Shell("/usr/bin/python3 " + script + " " + (dir / "s" / "sweep.json").string());
     EXPECT_EQ(check.code, 0) << check.output;
 }
 

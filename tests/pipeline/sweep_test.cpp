@@ -2,11 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/pipeline/map_run.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -108,6 +111,120 @@ TEST(RunSweep, ScoresEveryPointOnceAndPicksTheBest) {
     two.elapsed_s = one.elapsed_s;
     two.threads = one.threads;
     EXPECT_EQ(SweepJson(one), SweepJson(two));
+}
+
+TEST(ParseSeeds, ListsAndRanges) {
+    EXPECT_EQ(ParseSeeds("3,7", "f"), (std::vector<std::uint64_t>{3, 7}));
+    EXPECT_EQ(ParseSeeds("1-3,2", "f"), (std::vector<std::uint64_t>{1, 2, 3}));
+    EXPECT_NE(ErrorOf([] { (void)ParseSeeds("x", "--train-seeds"); }).find("--train-seeds = x"),
+              std::string::npos);
+    EXPECT_NE(ErrorOf([] { (void)ParseSeeds("3-1", "f"); }).find("FROM <= TO"), std::string::npos);
+    EXPECT_NE(ErrorOf([] { (void)ParseSeeds("", "f"); }).find("expected seeds"), std::string::npos);
+}
+
+TEST(SweepOptions, RejectsHeldOutRunsThatAreTrainingRuns) {
+    SweepOptions same;
+    same.seeds = {1, 2};
+    same.test_seeds = {2, 3};
+    EXPECT_NE(ErrorOf([&] { same.Validate(); }).find("test_seeds = seed 2, course 1"),
+              std::string::npos);
+    SweepOptions courses;  // held-out courses, same seed: allowed when disjoint
+    courses.courses = {1, 2};
+    courses.test_courses = {3};
+    EXPECT_NO_THROW(courses.Validate());
+    courses.test_courses = {2};
+    EXPECT_NE(ErrorOf([&] { courses.Validate(); }).find("test_courses"), std::string::npos);
+    SweepOptions filter;
+    filter.filter = "median";
+    EXPECT_NE(ErrorOf([&] { filter.Validate(); }).find("filter = median"), std::string::npos);
+    SweepOptions grow;
+    grow.grow = 21;
+    EXPECT_NE(ErrorOf([&] { grow.Validate(); }).find("grow"), std::string::npos);
+    SweepOptions trail;  // a variant's parameter out of its range names the axis
+    trail.filter = "cas_trail";
+    trail.axes = {{"support_min", {-1.0}}};
+    EXPECT_NE(ErrorOf([&] { trail.Validate(); }).find("support_min"), std::string::npos);
+}
+
+// Training on seed 1, held out on seed 2; the grid grows while the best sits on an edge; the
+// chosen point keeps every pole if any point does; the Pareto front is exactly the
+// non-dominated points; the paper's figures on the held-out run are the bench's.
+TEST(RunSweep, GrowsChoosesOnTrainingAndScoresHeldOut) {
+    SweepOptions options;
+    options.axes = {{"A", {12.0, 24.0}}, {"h_sum_min", {7.0, 9.0}}};
+    options.courses = {4};
+    options.test_seeds = {2};
+    options.grow = 2;
+    options.threads = 2;
+    const SweepResult r = RunSweep(options);
+    const std::size_t na = r.options.axes[0].values.size();
+    const std::size_t nh = r.options.axes[1].values.size();
+    ASSERT_EQ(r.points.size(), na * nh);
+    EXPECT_FALSE(r.growth.empty());  // A = 24 beats A = 12 at the paper's h_sum_min
+    EXPECT_LE(r.growth.back().round, 2);
+    for (const SweepGrowth& g : r.growth) {
+        const auto& values = g.axis == "A" ? r.options.axes[0].values : r.options.axes[1].values;
+        EXPECT_NE(std::find(values.begin(), values.end(), g.added.front()), values.end());
+    }
+    const SweepPoint& best = r.points[r.best];
+    bool any_keeps = false;
+    for (const SweepPoint& p : r.points) {
+        EXPECT_EQ(p.runs_scored, 1U);
+        any_keeps = any_keeps || p.KeepsEveryPole();
+        if (p.KeepsEveryPole()) {
+            EXPECT_LE(best.pi.mean, p.pi.mean);
+        }
+    }
+    EXPECT_EQ(r.best_keeps_every_pole, any_keeps);
+    EXPECT_EQ(best.KeepsEveryPole(), any_keeps);
+    const auto dominates = [](const SweepPoint& q, const SweepPoint& p) {
+        return q.pi.mean <= p.pi.mean && q.poles_kept >= p.poles_kept &&
+               q.spikes_total <= p.spikes_total &&
+               (q.pi.mean < p.pi.mean || q.poles_kept > p.poles_kept ||
+                q.spikes_total < p.spikes_total);
+    };
+    for (std::size_t i = 0; i < r.points.size(); ++i) {
+        const bool in_front = std::find(r.pareto.begin(), r.pareto.end(), i) != r.pareto.end();
+        bool dominated = false;
+        for (const SweepPoint& q : r.points) {
+            dominated = dominated || dominates(q, r.points[i]);
+        }
+        EXPECT_EQ(in_front, !dominated) << i;
+    }
+    ASSERT_EQ(r.held_out.size(), 1U);
+    EXPECT_EQ(r.held_out[0].name, "seed2_course04_T");
+    BenchOptions bench;
+    bench.courses = {4};
+    bench.tests = {"T"};
+    bench.seed = 2;
+    bench.sheets = false;
+    const BenchRun paper = RunBench(bench).runs.at(0);
+    EXPECT_EQ(r.held_out[0].paper.pi, paper.filters.at("cas").pi);
+    EXPECT_EQ(r.held_out[0].paper.spikes, paper.filters.at("cas").spikes);
+    bench.filter_settings = {"A=" + FormatNumber(best.values[0]),
+                             "h_sum_min=" + FormatNumber(best.values[1])};
+    const BenchRun chosen = RunBench(bench).runs.at(0);
+    EXPECT_EQ(r.held_out[0].chosen.pi, chosen.filters.at("cas").pi);
+    EXPECT_EQ(r.held_out[0].chosen.poles_kept, chosen.poles_kept.at("cas").size());
+    // The same at one thread, byte for byte.
+    options.threads = 1;
+    SweepResult one = RunSweep(options);
+    one.elapsed_s = r.elapsed_s;
+    one.threads = r.threads;
+    EXPECT_EQ(SweepJson(one), SweepJson(r));
+}
+
+// A variant's own parameter is swept with that variant (cas_trail's support_min changes PI).
+TEST(RunSweep, SweepsAVariantsParameters) {
+    SweepOptions options;
+    options.filter = "cas_trail";
+    options.axes = {{"support_min", {1.0, 8.0}}};
+    options.courses = {4};
+    options.threads = 2;
+    const SweepResult r = RunSweep(options);
+    ASSERT_EQ(r.points.size(), 2U);
+    EXPECT_NE(r.points[0].pi.mean, r.points[1].pi.mean);
+    EXPECT_NE(SweepJson(r).find("\"filter\":\"cas_trail\""), std::string::npos);
 }
 
 }  // namespace
