@@ -10,6 +10,7 @@
 #include "casmap/core/lms200.hpp"
 #include "casmap/core/text.hpp"
 #include "casmap/io/image.hpp"
+#include "casmap/mapper/kalman_mapper.hpp"
 
 namespace casmap::pipeline {
 
@@ -33,20 +34,113 @@ double ScanPeriod(const std::vector<core::Scan>& scans) {
     return *mid;
 }
 
+MapperMode ParseMapperMode(std::string_view text, const std::string& field) {
+    if (text == "paper") {
+        return MapperMode::kPaper;
+    }
+    if (text == "kalman") {
+        return MapperMode::kKalman;
+    }
+    throw MakeInputError("", field, std::string(text),
+                         "allowed: paper (Eq. 1-6) | kalman (Kalman fusion of the lowest point)");
+}
+
+std::string_view ToString(MapperMode mode) {
+    return mode == MapperMode::kKalman ? "kalman" : "paper";
+}
+
+Prefilter ParsePrefilter(std::string_view text, const std::string& field) {
+    if (text == "none") {
+        return Prefilter::kNone;
+    }
+    if (text == "shadow") {
+        return Prefilter::kShadow;
+    }
+    if (text == "range_jump") {
+        return Prefilter::kRangeJump;
+    }
+    throw MakeInputError("", field, std::string(text), "allowed: none | shadow | range_jump");
+}
+
+std::string_view ToString(Prefilter prefilter) {
+    switch (prefilter) {
+        case Prefilter::kShadow:
+            return "shadow";
+        case Prefilter::kRangeJump:
+            return "range_jump";
+        case Prefilter::kNone:
+            break;
+    }
+    return "none";
+}
+
+void MapSettings::Validate() const {
+    if (a < 1) {
+        throw MakeInputError("", "a", std::to_string(a), "allowed: integer >= 1");
+    }
+    if (!(delta_l_m >= 0.0) || !std::isfinite(delta_l_m)) {
+        throw MakeInputError("", "delta_l_m", FormatNumber(delta_l_m),
+                             "allowed: finite number >= 0");
+    }
+    shadow.Validate();
+    range_jump.Validate();
+}
+
+std::vector<std::uint8_t> PrefilterLabels(const core::Scan& scan, const MapSettings& settings) {
+    switch (settings.prefilter) {
+        case Prefilter::kShadow:
+            return mapper::ShadowFilterLabels(scan, settings.shadow);
+        case Prefilter::kRangeJump:
+            return mapper::RangeJumpLabels(scan, settings.range_jump);
+        case Prefilter::kNone:
+            break;
+    }
+    return {};
+}
+
+namespace {
+
+template <typename Mapper>
+void AddScans(Mapper& mapper,
+              const std::vector<core::Scan>& scans,
+              const core::Trajectory& world_T_sensor,
+              const MapSettings& settings) {
+    for (const core::Scan& scan : scans) {
+        if (settings.prefilter == Prefilter::kNone) {
+            mapper.AddScan(scan, world_T_sensor);
+        } else {
+            const std::vector<std::uint8_t> keep = PrefilterLabels(scan, settings);
+            mapper.AddScan(scan, world_T_sensor, keep);
+        }
+    }
+}
+
+}  // namespace
+
 MappedRun MapScans(const std::vector<core::Scan>& scans,
                    const core::Trajectory& world_T_sensor,
                    const core::GridGeometry& grid,
                    const MapSettings& settings) {
+    settings.Validate();
     mapper::TerrainMapperConfig config;
     config.grid = grid;
     config.a = settings.a;
     config.delta_l_m = settings.delta_l_m;
     config.scan_period_s = ScanPeriod(scans);
-    mapper::TerrainMapper mapper(config);
-    for (const core::Scan& scan : scans) {
-        mapper.AddScan(scan, world_T_sensor);
+    config.unknown = settings.unknown;
+    if (settings.mode == MapperMode::kKalman) {
+        mapper::KalmanMapperConfig kalman;
+        kalman.grid = grid;
+        kalman.a = settings.a;
+        kalman.scan_period_s = config.scan_period_s;
+        kalman.unknown = settings.unknown;
+        mapper::KalmanMapper mapper(kalman);
+        AddScans(mapper, scans, world_T_sensor, settings);
+        return MappedRun{mapper.elevation(), mapper.certainty(), mapper.stats(), config, settings};
     }
-    return MappedRun{mapper.elevation(), mapper.certainty(), mapper.stats(), config};
+    mapper::TerrainMapper mapper(config);
+    AddScans(mapper, scans, world_T_sensor, settings);
+    return MappedRun{mapper.elevation(), mapper.certainty(), mapper.stats(), config, settings};
 }
 
 core::GridGeometry GridCoveringBeams(const std::vector<core::Scan>& scans,

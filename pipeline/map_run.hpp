@@ -7,19 +7,44 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "casmap/core/grid.hpp"
 #include "casmap/core/scan.hpp"
 #include "casmap/core/trajectory.hpp"
+#include "casmap/mapper/scan_filters.hpp"
 #include "casmap/mapper/terrain_mapper.hpp"
+#include "casmap/mapper/unknown.hpp"
 
 namespace casmap::pipeline {
 
+/// How cell heights are estimated: the paper's Eq. 1-6 (TerrainMapper) or the Kalman fusion
+/// of each scan's lowest point per cell (KalmanMapper, Fankhauser et al.).
+enum class MapperMode { kPaper, kKalman };
+/// "paper" | "kalman"; throws InputError naming `field`.
+[[nodiscard]] MapperMode ParseMapperMode(std::string_view text, const std::string& field);
+[[nodiscard]] std::string_view ToString(MapperMode mode);
+
+/// Optional scan-domain pre-filter run on every scan before the mapper; its per-beam labels
+/// are the mapper's `keep` (mapper/scan_filters.hpp).
+enum class Prefilter { kNone, kShadow, kRangeJump };
+/// "none" | "shadow" | "range_jump"; throws InputError naming `field`.
+[[nodiscard]] Prefilter ParsePrefilter(std::string_view text, const std::string& field);
+[[nodiscard]] std::string_view ToString(Prefilter prefilter);
+
 /// Mapper settings a command may change (the rest of TerrainMapperConfig comes from the run).
+/// The defaults are the paper's mapper (Eq. 1-6, unknown cells 0, no pre-filter).
 struct MapSettings {
     int a = 3;                 // Eq. 5 certainty increment
     double delta_l_m = 0.032;  // Eq. 4 delta-l, the LMS 200's maximum range error
+    MapperMode mode = MapperMode::kPaper;
+    mapper::Unknown unknown = mapper::Unknown::kZero;  // never-observed elevation: 0 or NaN
+    Prefilter prefilter = Prefilter::kNone;
+    mapper::ShadowFilterConfig shadow;   // used when prefilter == kShadow
+    mapper::RangeJumpConfig range_jump;  // used when prefilter == kRangeJump
+    /// Throws InputError naming the field (a, delta_l_m, shadow_filter.<f>, range_jump.<f>).
+    void Validate() const;
 };
 
 /// Elevation H (m) and certainty C (counts) of one run.
@@ -28,13 +53,21 @@ struct MappedRun {
     core::MapF certainty;
     mapper::MapperStats stats;
     mapper::TerrainMapperConfig config;  // what was used (grid, a, delta-l, scan period)
+    MapSettings settings;                // mode, pre-filter and unknown convention used
 };
 
 /// Time between consecutive scans: the median of the stamp differences (robust to dropped
 /// scans), or the LMS 200's 1/75 s with fewer than two scans.
 [[nodiscard]] double ScanPeriod(const std::vector<core::Scan>& scans);
 
-/// Runs the terrain mapper (Eq. 1-6) over every scan with the pose at each beam's time.
+/// Per-beam keep labels of `scan` for `settings.prefilter` (empty for kNone: keep all).
+[[nodiscard]] std::vector<std::uint8_t> PrefilterLabels(const core::Scan& scan,
+                                                        const MapSettings& settings);
+
+/// Runs the mapper of `settings.mode` (Eq. 1-6 or Kalman) over every scan with the pose at
+/// each beam's time, each scan first through `settings.prefilter`. Validates `settings`.
+/// For kKalman, `certainty` is a per fused scan (KalmanMapper) and `config` holds the grid,
+/// a and scan period used.
 [[nodiscard]] MappedRun MapScans(const std::vector<core::Scan>& scans,
                                  const core::Trajectory& world_T_sensor,
                                  const core::GridGeometry& grid,

@@ -14,6 +14,7 @@
 #include "casmap/mapper/filters.hpp"
 #include "casmap/mapper/metrics.hpp"
 #include "casmap/mapper/terrain_mapper.hpp"
+#include "casmap/mapper/unknown.hpp"
 #include "casmap/pipeline/map_run.hpp"
 #include "convert.hpp"
 
@@ -248,7 +249,8 @@ void BindMapper(py::module_& m) {
         }));
 
     m.def("_map_scans", [](const py::dict& run_dict, const py::handle& grid_or_none, double cell_m,
-                           int a, double delta_l_m) {
+                           int a, double delta_l_m, const std::string& mapper_mode,
+                           const std::string& unknown, const std::string& prefilter) {
         const io::RunData run = RunFromDict(run_dict);
         std::optional<core::GridGeometry> grid;
         if (!grid_or_none.is_none()) {
@@ -257,6 +259,10 @@ void BindMapper(py::module_& m) {
         pipeline::MapSettings settings;
         settings.a = a;
         settings.delta_l_m = delta_l_m;
+        settings.mode = pipeline::ParseMapperMode(mapper_mode, "mapper");
+        settings.unknown = mapper::ParseUnknown(unknown, "map_run", "unknown");
+        settings.prefilter = pipeline::ParsePrefilter(prefilter, "prefilter");
+        settings.Validate();
         pipeline::MappedRun mapped;
         {
             py::gil_scoped_release release;

@@ -1,7 +1,8 @@
-// casmap map RUN.h5 [--out DIR] [--grid X0,Y0,CELL_M,ROWS,COLS]
-// Builds the elevation and certainty maps (Eq. 1-6) of a run file, simulated or recorded (the
-// truth labels are never read), and writes them as float TIFF + colour PNG into DIR and as
-// /maps/elevation_m and /maps/certainty into the run file.
+// casmap map RUN.h5 [--out DIR] [--grid X0,Y0,CELL_M,ROWS,COLS] [--mapper paper|kalman]
+//                  [--unknown zero|nan] [--prefilter none|shadow|range_jump]
+// Builds the elevation and certainty maps (Eq. 1-6, or the Kalman mapper) of a run file,
+// simulated or recorded (the truth labels are never read), and writes them as float TIFF +
+// colour PNG into DIR and as /maps/elevation_m and /maps/certainty into the run file.
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -13,6 +14,7 @@
 #include "casmap/io/image.hpp"
 #include "casmap/io/output_set.hpp"
 #include "casmap/io/run_file.hpp"
+#include "casmap/mapper/unknown.hpp"
 #include "casmap/pipeline/map_run.hpp"
 
 namespace casmap::app {
@@ -23,7 +25,19 @@ struct MapOptions {
     std::string run;
     std::string out;
     std::string grid;
+    std::string mapper = "paper";
+    std::string unknown = "zero";
+    std::string prefilter = "none";
 };
+
+pipeline::MapSettings ParseMapSettings(const MapOptions& opt) {
+    pipeline::MapSettings settings;
+    settings.mode = pipeline::ParseMapperMode(opt.mapper, "--mapper");
+    settings.unknown = mapper::ParseUnknown(opt.unknown, "command line", "--unknown");
+    settings.prefilter = pipeline::ParsePrefilter(opt.prefilter, "--prefilter");
+    settings.Validate();
+    return settings;
+}
 
 /// The grid: --grid, else the run's own (written with its ground truth), else the beams' extent.
 core::GridGeometry ChooseGrid(const MapOptions& opt, const io::RunData& run) {
@@ -51,13 +65,17 @@ std::string MapYaml(const MapOptions& opt,
     y += "run: " + fs::absolute(opt.run).string() + "\n";
     y += "seed: " + (run.seed ? std::to_string(*run.seed) : std::string("null")) + "\n";
     y += "grid: " + pipeline::GridYaml(mapped.config.grid) + "\n";
-    y += "mapper: {a: " + std::to_string(mapped.config.a) +
+    y += "mapper: {mode: " + std::string(pipeline::ToString(mapped.settings.mode)) +
+         ", unknown: " + std::string(mapper::ToString(mapped.settings.unknown)) +
+         ", prefilter: " + std::string(pipeline::ToString(mapped.settings.prefilter)) +
+         ", a: " + std::to_string(mapped.config.a) +
          ", delta_l_m: " + pipeline::FormatNumber(mapped.config.delta_l_m) +
          ", scan_period_s: " + pipeline::FormatNumber(mapped.config.scan_period_s) + "}\n";
     y += "stats: {beams_seen: " + std::to_string(s.beams_seen) +
          ", beams_not_ok: " + std::to_string(s.beams_not_ok) +
          ", beams_no_pose: " + std::to_string(s.beams_no_pose) +
          ", beams_outside: " + std::to_string(s.beams_outside) +
+         ", beams_rejected: " + std::to_string(s.beams_rejected) +
          ", beams_mapped: " + std::to_string(s.beams_mapped) + "}\n";
     return y;
 }
@@ -87,6 +105,7 @@ void WriteLayer(const LayerFiles& files,
 }
 
 void RunMap(const MapOptions& opt) {
+    const pipeline::MapSettings settings = ParseMapSettings(opt);  // bad flags exit 2 first
     const io::RunData run = io::ReadRunFile(opt.run);
     if (run.scans.empty()) {
         throw MakeInputError(opt.run, "/scans", "0 scans", "a run needs scans to be mapped");
@@ -113,10 +132,13 @@ void RunMap(const MapOptions& opt) {
                                     : outputs.AddFile(dir / "run_config.yaml", "--out", true);
     const fs::path run_tmp = outputs.AddFile(run_path, "run (its maps are stored in it)");
 
-    const pipeline::MappedRun mapped = pipeline::MapScans(run.scans, run.poses, grid);
+    const pipeline::MappedRun mapped = pipeline::MapScans(run.scans, run.poses, grid, settings);
     const core::Raster<std::uint8_t> unknown = pipeline::UnknownMask(mapped.certainty);
-    WriteLayer(elevation_files, mapped.elevation, "elevation (Eq. 6)", "m", &unknown);
-    WriteLayer(certainty_files, mapped.certainty, "certainty (Eq. 5)", "counts", &unknown);
+    const bool kalman = settings.mode == pipeline::MapperMode::kKalman;
+    WriteLayer(elevation_files, mapped.elevation,
+               kalman ? "elevation (Kalman mapper)" : "elevation (Eq. 6)", "m", &unknown);
+    WriteLayer(certainty_files, mapped.certainty,
+               kalman ? "certainty (a per fused scan)" : "certainty (Eq. 5)", "counts", &unknown);
     if (with_truth) {
         WriteLayer(truth_files, *run.maps.truth_m, "ground truth", "m", nullptr);
     }
@@ -146,6 +168,15 @@ void AddMapCommand(CLI::App& app, CommonOptions& common) {
     sub->add_option("--out", opt->out, "output directory (default: <run>_maps beside the run)");
     sub->add_option("--grid", opt->grid,
                     "X0,Y0,CELL_M,ROWS,COLS (default: the run's grid, else the beams' extent)");
+    sub->add_option("--mapper", opt->mapper,
+                    "paper (Eq. 1-6) | kalman (Kalman fusion of each scan's lowest point)")
+        ->capture_default_str();
+    sub->add_option("--unknown", opt->unknown,
+                    "never-observed cells: zero (the paper) | nan (grid_map convention)")
+        ->capture_default_str();
+    sub->add_option("--prefilter", opt->prefilter,
+                    "scan pre-filter before mapping: none | shadow | range_jump")
+        ->capture_default_str();
     AddThreadsOption(sub, common);
     sub->callback([opt] { RunMap(*opt); });
 }

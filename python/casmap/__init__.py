@@ -151,13 +151,17 @@ def write_run(path, run: Run) -> None:
 
 
 def map_run(run: Run, grid: Optional[Grid] = None, cell_m: float = 0.025, a: int = 3,
-            delta_l_m: float = 0.032):
-    """Elevation and certainty maps (Eq. 1-6) of a run, as `casmap map` builds them.
+            delta_l_m: float = 0.032, mapper: str = "paper", unknown: str = "zero",
+            prefilter: str = "none"):
+    """Elevation and certainty maps of a run, as `casmap map` builds them.
 
+    mapper "paper" (Eq. 1-6) or "kalman"; unknown "zero" (the paper) or "nan"; prefilter
+    "none", "shadow" or "range_jump" (as `casmap map --mapper/--unknown/--prefilter`).
     grid None: the smallest grid of cell_m cells covering every valid beam. Returns
     (elevation, certainty, grid).
     """
-    d = _casmap._map_scans(run._to_dict(), grid, cell_m, a, delta_l_m)
+    d = _casmap._map_scans(run._to_dict(), grid, cell_m, a, delta_l_m, mapper, unknown,
+                           prefilter)
     return d["elevation"], d["certainty"], d["grid"]
 
 

@@ -70,6 +70,13 @@ def test_map_run_and_mapper_equal_casmap_map(exe, cli_run, tmp_path):
                         beam_period_s=s.beam_period_s)
     assert np.array_equal(mapper.elevation, cli_h) and np.array_equal(mapper.certainty, cli_c)
     assert mapper.stats["beams_mapped"] > 0
+    # The other mapper modes match `casmap map --mapper kalman --unknown nan` too.
+    run_cli(exe, "map", cli_run, "--out", tmp_path / "kalman", "--mapper", "kalman",
+            "--unknown", "nan")
+    kh, kc, _ = casmap.map_run(run, grid=run.maps.grid, mapper="kalman", unknown="nan")
+    assert np.array_equal(kh, casmap.read_map_tiff(tmp_path / "kalman" / "elevation.tiff"),
+                          equal_nan=True)
+    assert np.isnan(kh[kc == 0]).all()
 
 
 @needs_sim

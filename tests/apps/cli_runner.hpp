@@ -4,6 +4,9 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 namespace casmap::test {
@@ -24,6 +27,14 @@ inline Result Shell(const std::string& cmd) {
     const int status = pipe != nullptr ? pclose(pipe) : -1;
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
+}
+
+/// The whole text of a file ("" if it cannot be read).
+inline std::string ReadText(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
 }
 
 /// Runs `casmap ARGS`.

@@ -171,5 +171,74 @@ TEST(MapCommand, BadInputExitsTwoNamingIt) {
     EXPECT_NE(r.output.find("/proc/casmap_cannot"), std::string::npos) << r.output;
 }
 
+TEST(MapCommand, UnknownNanKalmanAndPrefilterModes) {
+    const fs::path dir = FreshDir("modes");
+    io::RunData with_grid = FlatFloorRun(false);
+    with_grid.maps.grid = core::GridGeometry{0.0, -1.0, 0.025, 60, 80};
+    io::WriteRunFile(dir / "run.h5", with_grid);
+    const std::string run = (dir / "run.h5").string();
+
+    Result r = Casmap("map " + run + " --out " + (dir / "zero").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const core::MapF h0 = io::ReadMapTiff(dir / "zero" / "elevation.tiff");
+    const core::MapF c0 = io::ReadMapTiff(dir / "zero" / "certainty.tiff");
+
+    // NaN: the same maps except never-observed cells, which hold NaN instead of 0.
+    r = Casmap("map " + run + " --unknown nan --out " + (dir / "nan").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const core::MapF hn = io::ReadMapTiff(dir / "nan" / "elevation.tiff");
+    int unknown = 0;
+    for (std::size_t i = 0; i < hn.data.size(); ++i) {
+        if (c0.data[i] == 0.0F) {
+            ++unknown;
+            EXPECT_TRUE(std::isnan(hn.data[i])) << i;
+        } else {
+            EXPECT_EQ(hn.data[i], h0.data[i]) << i;
+        }
+    }
+    EXPECT_GT(unknown, 0);
+    EXPECT_NE(io::ReadRunMaps(run).elevation_m->data.size(), 0U);
+
+    // Kalman: floor and block top at their heights where observed; map.yaml says which mapper.
+    r = Casmap("map " + run + " --mapper kalman --out " + (dir / "kalman").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const core::MapF hk = io::ReadMapTiff(dir / "kalman" / "elevation.tiff");
+    const core::MapF ck = io::ReadMapTiff(dir / "kalman" / "certainty.tiff");
+    int seen = 0;
+    for (std::size_t i = 0; i < hk.data.size(); ++i) {
+        if (ck.data[i] > 0.0F) {
+            ++seen;
+            const float z = hk.data[i];
+            EXPECT_TRUE(std::abs(z) < 5e-3 || std::abs(z - kBlockTopM) < 5e-3) << i << ": " << z;
+        }
+    }
+    EXPECT_GT(seen, 500);
+    const std::string yaml = test::ReadText(dir / "kalman" / "map.yaml");
+    EXPECT_NE(yaml.find("mode: kalman"), std::string::npos) << yaml;
+
+    // A pre-filter rejects beams (recorded in map.yaml) and the block still maps.
+    r = Casmap("map " + run + " --prefilter range_jump --out " + (dir / "jump").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(test::ReadText(dir / "jump" / "map.yaml").find("prefilter: range_jump"),
+              std::string::npos);
+    r = Casmap("map " + run + " --prefilter shadow --out " + (dir / "shadow").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(test::ReadText(dir / "shadow" / "map.yaml").find("prefilter: shadow"),
+              std::string::npos);
+}
+
+TEST(MapCommand, BadModeFlagsExitTwoNamingTheFlag) {
+    const fs::path dir = FreshDir("badmodes");
+    io::WriteRunFile(dir / "run.h5", FlatFloorRun(false));
+    const std::string run = (dir / "run.h5").string();
+    for (const std::string flag : {"--mapper", "--unknown", "--prefilter"}) {
+        const Result r = Casmap("map " + run + " " + flag + " bogus");
+        EXPECT_EQ(r.code, 2) << flag << ": " << r.output;
+        EXPECT_NE(r.output.find(flag), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("bogus"), std::string::npos) << r.output;
+    }
+    EXPECT_FALSE(fs::exists(dir / "run_maps"));
+}
+
 }  // namespace
 }  // namespace casmap
