@@ -38,6 +38,11 @@ inline constexpr std::uint64_t kMaxImagePixels = kMaxGridCells;
 inline constexpr std::uint64_t kMaxFileBytes = 1u << 30;
 /// Vertices or faces of an imported mesh (10 M = 120 MB of float vertices).
 inline constexpr std::uint64_t kMaxMeshElements = 10'000'000;
+/// Corners of one mesh polygon with more than 4 corners, and of all such polygons of a mesh.
+/// assimp's triangulation (ear clipping) takes time quadratic in a polygon's corners: a 900 KB
+/// OBJ holding one 32 000-corner polygon took 20 s. These bound it to about 2 s.
+inline constexpr std::uint64_t kMaxPolygonCorners = 1024;
+inline constexpr std::uint64_t kMaxPolygonCornersTotal = 100'000;
 
 /// Throws InputError "<where>: <field> = <size> (<what> limit <limit>, see docs/limits.md)"
 /// when `size` > `limit`.

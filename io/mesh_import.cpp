@@ -123,8 +123,47 @@ void CheckHeader(std::string_view head,
     }
 }
 
-constexpr unsigned int kPostProcess =
-    aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+// Reading only validates; the polygons are checked (CheckPolygons) before assimp triangulates
+// them and separates points and lines from triangles.
+constexpr unsigned int kReadProcess = aiProcess_ValidateDataStructure;
+constexpr unsigned int kPostProcess = aiProcess_Triangulate | aiProcess_SortByPType;
+
+// assimp triangulates a polygon of k > 4 corners by ear clipping, in time ~k^2 (a 32 000-corner
+// polygon: 20 s): bound each polygon and all of them before it runs (docs/limits.md).
+void CheckPolygons(const aiScene& scene, const std::string& name) {
+    std::uint64_t total = 0;
+    for (unsigned int m = 0; m < scene.mNumMeshes; ++m) {
+        const aiMesh& mesh = *scene.mMeshes[m];
+        for (unsigned int f = 0; f < mesh.mNumFaces; ++f) {
+            const std::uint64_t corners = mesh.mFaces[f].mNumIndices;
+            if (corners <= 4) {
+                continue;
+            }
+            limits::CheckLimit(name, "mesh polygon corners", corners, limits::kMaxPolygonCorners,
+                               "polygon corner");
+            total += corners;
+            limits::CheckLimit(name, "mesh corners of polygons with more than 4", total,
+                               limits::kMaxPolygonCornersTotal, "polygon corner");
+        }
+    }
+}
+
+// Reads with `read` (validation only), checks the polygons, then triangulates.
+template <typename Read>
+const aiScene* ImportChecked(Assimp::Importer& importer, const std::string& name, Read read) {
+    try {
+        const aiScene* scene = read();
+        if (scene == nullptr || scene->mRootNode == nullptr) {
+            return scene;
+        }
+        CheckPolygons(*scene, name);
+        return importer.ApplyPostProcessing(kPostProcess);
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw MakeInputError(name, "mesh", "", std::string("unreadable: ") + e.what());
+    }
+}
 
 void CheckScale(const std::string& name, const Eigen::Vector3d& scale) {
     for (int i = 0; i < 3; ++i) {
@@ -174,13 +213,10 @@ core::MeshShape ImportMeshFromMemory(std::string_view bytes,
     CheckScale(name, scale);
     CheckHeader(bytes.substr(0, 65536), bytes.size(), format_hint, name);
     Assimp::Importer importer;
-    const aiScene* scene = nullptr;
-    try {
-        scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), kPostProcess,
-                                            format_hint.c_str());
-    } catch (const std::exception& e) {
-        throw MakeInputError(name, "mesh", "", std::string("unreadable: ") + e.what());
-    }
+    const aiScene* scene = ImportChecked(importer, name, [&] {
+        return importer.ReadFileFromMemory(bytes.data(), bytes.size(), kReadProcess,
+                                           format_hint.c_str());
+    });
     return ToShape(scene, importer, name, scale);
 }
 
@@ -201,12 +237,8 @@ core::MeshShape ImportMesh(const std::filesystem::path& path, const Eigen::Vecto
     Assimp::Importer importer;
     // Triangulate polygons; SortByPType separates points/lines; no unit or axis conversion, so
     // `scale` alone maps file units to metres.
-    const aiScene* scene = nullptr;
-    try {
-        scene = importer.ReadFile(name, kPostProcess);
-    } catch (const std::exception& e) {
-        throw MakeInputError(name, "mesh", "", std::string("unreadable: ") + e.what());
-    }
+    const aiScene* scene =
+        ImportChecked(importer, name, [&] { return importer.ReadFile(name, kReadProcess); });
     return ToShape(scene, importer, name, scale);
 }
 

@@ -2,6 +2,7 @@
 """Writes the binary files of the bad-input corpus (run files, TIFFs, meshes); the text files
 beside them are written by hand. Regenerate: cd tests/data/bad_inputs && /usr/bin/python3
 make_bad_inputs.py. cases.tsv lists the commands that use them."""
+import math
 import struct
 
 import h5py
@@ -68,3 +69,12 @@ with open("not_a_tiff.tiff", "wb") as f:
 with open("huge_vertices.ply", "wb") as f:
     f.write(b"ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\n"
             b"property float x\nproperty float y\nproperty float z\nend_header\n")
+
+# One star-shaped polygon of 1100 corners: assimp's triangulation is quadratic in the corners
+# (a 32 000-corner polygon takes 20 s), so casmap rejects polygons above 1024 corners.
+with open("polygon_1100.obj", "w") as f:
+    corners = 1100
+    for i in range(corners):
+        a, r = 2 * math.pi * i / corners, (1.0 if i % 2 == 0 else 0.5)
+        f.write(f"v {r * math.cos(a):.4f} {r * math.sin(a):.4f} 0\n")
+    f.write("f " + " ".join(str(i + 1) for i in range(corners)) + "\n")
