@@ -182,7 +182,9 @@ FilterMetrics EvaluateFilter(const FilterResult& result,
         result.classes.rows == truth.rows && result.classes.cols == truth.cols;
     double filled_sq = 0.0;
     double edge_sq = 0.0;
+    double open_sq = 0.0;
     std::int64_t edges = 0;
+    std::int64_t open = 0;
     const double step_m = SpikeRule{}.threshold_m;
     for (int i = region.row0; i < region.row0 + region.rows; ++i) {
         for (int j = region.col0; j < region.col0 + region.cols; ++j) {
@@ -196,15 +198,24 @@ FilterMetrics EvaluateFilter(const FilterResult& result,
                 ++m.filled_cells;
                 filled_sq += d * d;
             }
-            if (!std::isnan(raw.at(i, j)) && IsTruthEdge(truth, i, j, step_m)) {
+            if (std::isnan(raw.at(i, j))) {
+                continue;  // not a scored cell
+            }
+            if (IsTruthEdge(truth, i, j, step_m)) {
                 ++edges;
                 edge_sq += d * d;
+            } else {
+                ++open;
+                open_sq += d * d;
             }
         }
     }
     m.filled_rmse_m =
         m.filled_cells > 0 ? std::sqrt(filled_sq / static_cast<double>(m.filled_cells)) : kNaN;
     m.edge_rmse_m = edges > 0 ? std::sqrt(edge_sq / static_cast<double>(edges)) : kNaN;
+    m.open_rmse_m = open > 0 ? std::sqrt(open_sq / static_cast<double>(open)) : kNaN;
+    m.edge_cells = edges;
+    m.open_cells = open;
     return m;
 }
 

@@ -76,6 +76,10 @@ struct FilterMetrics {
     double filled_rmse_m = 0.0;     // filtered vs truth over those cells (NaN if none)
     double edge_rmse_m = 0.0;       // filtered vs truth on truth edges (a 4-neighbour differs
                                     // by more than SpikeRule::threshold_m); NaN if none
+    double open_rmse_m = 0.0;       // the same on the other scored cells (open floor, tops of
+                                    // obstacles away from their edges); NaN if none
+    std::int64_t edge_cells = 0;    // scored cells on truth edges
+    std::int64_t open_cells = 0;    // scored cells off them
 };
 [[nodiscard]] FilterMetrics EvaluateFilter(const FilterResult& result,
                                            const core::MapF& raw,

@@ -1,5 +1,6 @@
 #include "casmap/pipeline/bench.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <numeric>
 #include <set>
@@ -12,6 +13,7 @@
 #include "casmap/pipeline/bench_runner.hpp"
 #include "casmap/pipeline/bench_wire.hpp"
 #include "casmap/pipeline/distributed.hpp"
+#include "casmap/pipeline/preset.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -35,13 +37,49 @@ const std::vector<std::string>& AllTests() {
 }
 
 void BenchOptions::Validate() const {
-    CheckCoursesAndTests(courses, tests);
+    if (!(courses.empty() && !scenes.empty())) {
+        CheckCoursesAndTests(courses, tests);
+    }
+    CheckPipelines(pipelines);
+    std::set<std::string> names;
+    for (const std::string& scene : scenes) {
+        if (!fs::is_regular_file(scene)) {
+            throw MakeInputError("", "scenes", scene, "no such scene file");
+        }
+        if (!names.insert(SceneRunStem(scene)).second) {
+            throw MakeInputError("", "scenes", scene,
+                                 "two scenes share the run name " + SceneRunStem(scene) +
+                                     " (runs are named after the file stem)");
+        }
+    }
+    if (!scenes.empty()) {
+        std::set<std::string> seen;
+        for (const std::string& m : scene_motions) {
+            const std::vector<std::string> all = {"T", "TR", "TP", "TRP", "vehicle"};
+            if (std::find(all.begin(), all.end(), m) == all.end() || !seen.insert(m).second) {
+                throw MakeInputError("", "scene_motions", m,
+                                     "allowed: T, TR, TP, TRP, vehicle, each at most once");
+            }
+        }
+        if (scene_motions.empty()) {
+            throw MakeInputError("", "scene_motions", "", "at least one motion");
+        }
+    }
     (void)ResolveBenchSettings(courses_dir, rig_path, sensor_path, seed);
     mapper::FilterParams check;
-    for (const std::string& assignment : filter_settings) {
+    for (const std::string& assignment : EffectiveFilterSettings()) {
         check.SetAssignment(assignment);
     }
     check.Validate();
+}
+
+std::vector<std::string> BenchOptions::EffectiveFilterSettings() const {
+    std::vector<std::string> all;
+    if (!preset.empty()) {
+        all = LoadPreset(preset, "preset").settings;
+    }
+    all.insert(all.end(), filter_settings.begin(), filter_settings.end());
+    return all;
 }
 
 std::string FilterParamsYaml(const mapper::FilterParams& p) {
@@ -55,6 +93,7 @@ std::string FilterParamsYaml(const mapper::FilterParams& p) {
            ", normalise: " + (c.normalise == mapper::Normalise::kWindow ? "window" : "global") +
            ", e_term: " + OnOff(c.e_term) + ", E: " + FormatNumber(c.E) +
            ", wm_empty: " + (c.wm_empty == mapper::WmEmpty::kInclude ? "include" : "skip") +
+           (c.unknown == mapper::Unknown::kNaN ? ", unknown: nan" : "") +
            "}\n  baseline: {window: " + std::to_string(p.baseline.window) + ", noise: " +
            (p.baseline.noise ? FormatNumber(*p.baseline.noise) : "mean_local_variance") +
            ", center_weight: " + std::to_string(p.baseline.center_weight) + "}\n";
@@ -66,7 +105,9 @@ BenchResult RunBench(const BenchOptions& options, const core::ProgressFn& progre
     const BenchSettings settings = ResolveBenchSettings(options.courses_dir, options.rig_path,
                                                         options.sensor_path, options.seed);
     const std::vector<int>& courses = options.courses;
-    const std::vector<std::string> tests = SortedTests(options.tests);
+    const std::vector<std::string> tests =
+        courses.empty() ? std::vector<std::string>{} : SortedTests(options.tests);
+    const std::vector<std::string> filter_settings = options.EffectiveFilterSettings();
     const int threads = core::ResolveThreads(options.threads);
 
     // The table trajectories depend on the test only (the rig does not see the scene).
@@ -74,17 +115,36 @@ BenchResult RunBench(const BenchOptions& options, const core::ProgressFn& progre
     for (std::size_t t = 0; t < tests.size(); ++t) {
         setups[t] = BenchSetup(settings, courses.front(), tests[t]);
     }
+    // Scene runs: scene-major, one setup per scene x motion (the vehicle follows the scene).
+    const std::size_t n_courses = courses.size() * tests.size();
+    const std::size_t n_motions = options.scene_motions.size();
+    std::vector<SimSetup> scene_setups(options.scenes.size() * n_motions);
+    for (std::size_t k = 0; k < scene_setups.size(); ++k) {
+        SimFlags flags;
+        flags.scene_path = options.scenes[k / n_motions];
+        flags.motion = options.scene_motions[k % n_motions];
+        flags.seed = settings.seed;
+        flags.rig_path = settings.rig_path;
+        flags.sensor_path = settings.sensor_path;
+        scene_setups[k] = ResolveSimSetup(flags);
+    }
     std::vector<core::Trajectory> trajectories(tests.size());
     std::vector<Course> loaded;
-    core::ParallelFor(tests.size() + 1, threads, [&](std::size_t i) {
+    std::vector<Course> scenes(options.scenes.size());
+    core::ParallelFor(tests.size() + 1 + scenes.size(), threads, [&](std::size_t i) {
         if (i < tests.size()) {
             trajectories[i] = RigTrajectory(setups[i], core::Scene{});
+        } else if (i == tests.size()) {
+            if (!courses.empty()) {
+                loaded = LoadCourses(settings, courses, setups.front().grid, 1);
+            }
         } else {
-            loaded = LoadCourses(settings, courses, setups.front().grid, 1);
+            const std::size_t sc = i - tests.size() - 1;
+            scenes[sc] = LoadSceneCourse(options.scenes[sc], scene_setups[sc * n_motions].grid);
         }
     });
 
-    const std::size_t n = courses.size() * tests.size();
+    const std::size_t n = n_courses + scene_setups.size();
     BenchResult result;
     result.runs.resize(n);
     result.run_names.resize(n);
@@ -92,6 +152,7 @@ BenchResult RunBench(const BenchOptions& options, const core::ProgressFn& progre
     result.grids.resize(n);
     result.write_sheets = options.sheets;
     result.write_maps = options.maps;
+    result.pipelines = options.pipelines;
     const bool keep_maps = options.sheets || options.maps;
     if (keep_maps) {
         result.sheets.resize(n);
@@ -104,17 +165,31 @@ BenchResult RunBench(const BenchOptions& options, const core::ProgressFn& progre
     // A run travels as 'R' + EncodeBenchRun, or 'E' + the error that stopped it.
     const auto work = [&](std::size_t k) -> std::string {
         try {
-            const Course& course = loaded[k / tests.size()];
-            const std::size_t t = k % tests.size();
-            SimSetup setup = setups[t];
+            const bool scene_run = k >= n_courses;
+            const Course& course =
+                scene_run ? scenes[(k - n_courses) / n_motions] : loaded[k / tests.size()];
+            SimSetup setup = scene_run ? scene_setups[k - n_courses] : setups[k % tests.size()];
             setup.scene_path = course.path;
-            const MappedBenchRun run = SimulateAndMap(setup, course, trajectories[t], 3);
-            const mapper::FilterParams params = RunFilterParams(run, options.filter_settings);
+            const core::Trajectory poses =
+                scene_run ? RigTrajectory(setup, course.scene) : core::Trajectory{};
+            const SimulatedRun sim =
+                SimulateBenchRun(setup, course, scene_run ? poses : trajectories[k % tests.size()]);
+            // Unknown cells: 0 on the paper's courses, NaN on other scenes; --set unknown=
+            // (or a preset) decides for the mapper and the filters alike.
+            const mapper::FilterParams params = SetupFilterParams(
+                setup, 3, scene_run ? mapper::Unknown::kNaN : mapper::Unknown::kZero,
+                filter_settings);
+            const MappedBenchRun run = MapBenchRun(setup, course, sim, 3, params.cas.unknown);
             BenchRunRecord record;
             record.has_sheet = keep_maps;
-            record.run = ScoreRun(run, course, params, keep_maps ? &record.sheet : nullptr);
-            record.name = RunName(course.number, tests[t]);
+            record.run = ScorePipelines(run, &sim, course, params, options.pipelines,
+                                        keep_maps ? &record.sheet : nullptr);
+            record.run.scene = scene_run ? course.path : std::string();
+            record.name = BenchRunName(record.run);
             record.config_yaml = run.config_yaml + FilterParamsYaml(params);
+            if (!options.preset.empty()) {
+                record.config_yaml += "preset: " + options.preset + "\n";
+            }
             return "R" + EncodeBenchRun(record);
         } catch (const std::exception& e) {
             return std::string("E") + e.what();
@@ -133,7 +208,8 @@ BenchResult RunBench(const BenchOptions& options, const core::ProgressFn& progre
         if (keep_maps) {
             result.sheets[k] = std::move(record.sheet);
         }
-        result.grids[k] = setups[k % tests.size()].grid;
+        result.grids[k] =
+            k >= n_courses ? scene_setups[k - n_courses].grid : setups[k % tests.size()].grid;
         counter.Advance();
     };
     (void)DistributeWork(session, items, threads, work, done);
@@ -161,7 +237,9 @@ std::string WriteBenchOutputs(const fs::path& dir, const BenchResult& result) {
         if (sheets) {
             const BenchRun& r = result.runs[k];
             WriteSheet(dir / "sheets" / (name + ".png"), result.sheets[k],
-                       "obstacle course " + std::to_string(r.course) + ", test " + r.test +
+                       (r.scene.empty()
+                            ? "obstacle course " + std::to_string(r.course) + ", test " + r.test
+                            : "scene " + r.scene + ", motion " + r.test) +
                            ": raw, ground truth and the five filters");
         }
         if (maps) {
@@ -172,6 +250,7 @@ std::string WriteBenchOutputs(const fs::path& dir, const BenchResult& result) {
     io::WriteTextAtomically(dir / "table2.md", TableTwoMarkdown(result.runs));
     io::WriteTextAtomically(dir / "poles.md", PolesMarkdown(result.runs));
     io::WriteTextAtomically(dir / "pi_table.txt", PiTable(result.runs));
+    io::WriteTextAtomically(dir / "pipelines.md", PipelinesMarkdown(result.runs));
     const double elapsed =
         result.elapsed_s +
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

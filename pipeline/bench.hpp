@@ -13,6 +13,7 @@
 
 #include "casmap/core/progress.hpp"
 #include "casmap/mapper/filter_params.hpp"
+#include "casmap/pipeline/bench_pipelines.hpp"
 #include "casmap/pipeline/benchmark_report.hpp"
 
 namespace casmap::pipeline {
@@ -25,33 +26,48 @@ class DistributedSession;  // distributed.hpp
 [[nodiscard]] const std::vector<std::string>& AllTests();
 
 struct BenchOptions {
-    std::vector<int> courses = AllCourses();      // each in 1..16, no repeats
+    std::vector<int> courses = AllCourses();      // each in 1..16, no repeats; may be empty
+                                                  // when `scenes` is not
     std::vector<std::string> tests = AllTests();  // subset of T, TR, TP, TRP, no repeats
-    std::uint64_t seed = 1;                       // simulator seed of every run
-    std::string courses_dir;                      // course01.yaml ..; empty: CoursesDir()
-    std::string rig_path;                         // rig YAML; empty: the paper course
-    std::string sensor_path;                      // LMS 200 YAML; empty: built-in config
-    std::vector<std::string> filter_settings;     // NAME=VALUE (mapper::FilterParams::Set)
-    bool sheets = true;                           // keep the maps for the Fig. 7 sheets
+    /// Named pipelines scored per run (bench_pipelines.hpp); default: the paper's five.
+    std::vector<std::string> pipelines = PaperPipelineNames();
+    /// Further scene files (any scene YAML: outdoor, generated terrain), each run with every
+    /// motion of `scene_motions` (T, TR, TP, TRP, vehicle) after the courses. Unknown cells
+    /// are NaN on these runs (0 on the courses) unless --set unknown= says otherwise.
+    std::vector<std::string> scenes;
+    std::vector<std::string> scene_motions = {"vehicle"};
+    /// Filter-parameter preset (preset.hpp) applied before filter_settings; empty = the
+    /// built-in defaults (= the `paper` preset).
+    std::string preset;
+    std::uint64_t seed = 1;                    // simulator seed of every run
+    std::string courses_dir;                   // course01.yaml ..; empty: CoursesDir()
+    std::string rig_path;                      // rig YAML; empty: the paper course
+    std::string sensor_path;                   // LMS 200 YAML; empty: built-in config
+    std::vector<std::string> filter_settings;  // NAME=VALUE (mapper::FilterParams::Set)
+    bool sheets = true;                        // keep the maps for the Fig. 7 sheets
     bool maps = false;  // also keep them for runs/<run>/*.tif + maps.json (bench_maps.hpp)
     int threads = 0;    // 0 = all cores; results never depend on it
     /// MPI ranks to spread the runs over (distributed.hpp; rank 0 gets the result, other
     /// ranks an empty one); null: local threads only. Results never depend on it.
     const DistributedSession* session = nullptr;
 
-    /// Throws InputError naming the field (courses, tests, courses_dir, rig_path,
-    /// sensor_path, filter_settings), the value and the rule.
+    /// Throws InputError naming the field (courses, tests, pipelines, scenes, scene_motions,
+    /// preset, courses_dir, rig_path, sensor_path, filter_settings), the value and the rule.
     void Validate() const;
+    /// The preset's settings (if any) followed by filter_settings: what every run applies.
+    [[nodiscard]] std::vector<std::string> EffectiveFilterSettings() const;
 };
 
 struct BenchResult {
-    std::vector<BenchRun> runs;             // course-major, tests in T, TR, TP, TRP order
+    std::vector<BenchRun> runs;             // course-major, tests in T, TR, TP, TRP order, then
+                                            // the scene runs (scene-major, motions as given)
     std::vector<std::string> run_names;     // "course04_T" per run
     std::vector<std::string> run_configs;   // effective configuration YAML per run
     std::vector<SheetMaps> sheets;          // per run when BenchOptions::sheets or maps, else empty
     std::vector<core::GridGeometry> grids;  // the map grid per run
     bool write_sheets = true;               // WriteBenchOutputs draws sheets/<run>.png
     bool write_maps = false;                // WriteBenchOutputs writes runs/<run>/ maps
+    std::vector<std::string> pipelines;     // the pipelines scored
     double elapsed_s = 0.0;                 // wall time of RunBench
     int threads = 1;                        // threads used
 };
@@ -62,10 +78,10 @@ struct BenchResult {
                                    const core::ProgressFn& progress = {});
 
 /// Writes DIR/bench.json, pi_chart.png (Fig. 8), table2.md (Table II), poles.md,
-/// pi_table.txt, runs/<run>.yaml and, when the result has them, sheets/<run>.png (Fig. 7)
-/// and runs/<run>/*.tif + maps.json (WriteBenchMaps).
-/// Creates DIR. bench.json's elapsed_s counts RunBench and the writing before it. Returns the
-/// bench.json text written.
+/// pi_table.txt, pipelines.md (PipelinesMarkdown), runs/<run>.yaml and, when the result has them,
+/// sheets/<run>.png (Fig. 7) and runs/<run>/*.tif + maps.json (WriteBenchMaps). Creates DIR.
+/// bench.json's elapsed_s counts RunBench and the writing before it. Returns the bench.json text
+/// written.
 std::string WriteBenchOutputs(const std::filesystem::path& dir, const BenchResult& result);
 
 /// The `filters:` section of a run's effective configuration (every CAS and baseline value).

@@ -30,72 +30,6 @@ bool ParseInt(const std::string& s, int& v) {
     return parsed.has_value();
 }
 
-/// RMSE against truth over the cells CAS filled inside `region` (NaN if none).
-double FillError(const core::MapF& map,
-                 const core::MapF& truth,
-                 const mapper::ClassMap& cas_classes,
-                 const mapper::Region& region) {
-    double sum = 0.0;
-    std::int64_t n = 0;
-    for (int r = region.row0; r < region.row0 + region.rows; ++r) {
-        for (int c = region.col0; c < region.col0 + region.cols; ++c) {
-            if (cas_classes.at(r, c) == static_cast<std::uint8_t>(mapper::PixelClass::kFilled)) {
-                const double d = static_cast<double>(map.at(r, c)) - truth.at(r, c);
-                sum += d * d;
-                ++n;
-            }
-        }
-    }
-    return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : std::nan("");
-}
-
-/// Poles of the scene (objects named pole<N>) with the cell holding their axis.
-struct Pole {
-    std::string name;
-    int row = 0;
-    int col = 0;
-    double height_m = 0.0;
-};
-
-std::vector<Pole> Poles(const core::Scene& scene, const core::GridGeometry& grid) {
-    std::vector<Pole> poles;
-    for (const core::SceneObject& o : scene.objects) {
-        const auto* cyl = std::get_if<core::CylinderShape>(&o.shape);
-        if (cyl == nullptr || o.name.rfind("pole", 0) != 0) {
-            continue;
-        }
-        const Eigen::Vector3d& p = o.world_T_object.translation;
-        if (const std::optional<core::Cell> cell = grid.CellOf(p.x(), p.y())) {
-            poles.push_back({o.name, cell->row, cell->col, p.z() + 0.5 * cyl->height_m});
-        }
-    }
-    std::sort(poles.begin(), poles.end(),
-              [](const Pole& a, const Pole& b) { return a.name < b.name; });
-    return poles;
-}
-
-/// A map keeps a pole when it reaches half the pole's height within one cell of it.
-bool Keeps(const core::MapF& map, const Pole& pole) {
-    for (int r = std::max(0, pole.row - 1); r <= std::min(map.rows - 1, pole.row + 1); ++r) {
-        for (int c = std::max(0, pole.col - 1); c <= std::min(map.cols - 1, pole.col + 1); ++c) {
-            if (map.at(r, c) >= 0.5 * pole.height_m) {
-                return true;
-            }
-        }
-    }
-    return false;
-}
-
-std::vector<std::string> KeptPoles(const core::MapF& map, const std::vector<Pole>& poles) {
-    std::vector<std::string> kept;
-    for (const Pole& p : poles) {
-        if (Keeps(map, p)) {
-            kept.push_back(p.name);
-        }
-    }
-    return kept;
-}
-
 }  // namespace
 
 std::vector<int> ParseCourses(const std::string& text, const std::string& field) {
@@ -239,7 +173,8 @@ SimulatedRun SimulateBenchRun(const SimSetup& setup,
 MappedBenchRun MapBenchRun(const SimSetup& setup,
                            const Course& course,
                            const SimulatedRun& sim,
-                           int a) {
+                           int a,
+                           mapper::Unknown unknown) {
     MappedBenchRun run;
     run.test = setup.motion_name;
     run.course = course.number;
@@ -247,6 +182,7 @@ MappedBenchRun MapBenchRun(const SimSetup& setup,
     run.scans = sim.run.scans.size();
     MapSettings settings;
     settings.a = a;
+    settings.unknown = unknown;
     run.mapped = MapScans(sim.run.scans, sim.run.poses, setup.grid, settings);
     run.config_yaml = sim.run.config_yaml;
     return run;
@@ -259,13 +195,18 @@ MappedBenchRun SimulateAndMap(const SimSetup& setup,
     return MapBenchRun(setup, course, SimulateBenchRun(setup, course, poses), a);
 }
 
-mapper::FilterParams RunFilterParams(const MappedBenchRun& run,
-                                     const std::vector<std::string>& overrides) {
+mapper::FilterParams SetupFilterParams(const SimSetup& setup,
+                                       int a,
+                                       mapper::Unknown unknown,
+                                       const std::vector<std::string>& overrides) {
     mapper::FilterParams p;
-    p.cas.cell_m = run.setup.grid.cell_m;
-    p.cas.speed_m_s = run.setup.table.speed_m_s;
-    p.cas.scan_period_s = sensor_models::Lms200Model(run.setup.lms).ScanPeriodS();
-    p.cas.a = run.mapped.config.a;
+    p.cas.cell_m = setup.grid.cell_m;
+    p.cas.speed_m_s = setup.vehicle ? setup.vehicle_config.speed_m_s : setup.table.speed_m_s;
+    p.cas.scan_period_s = sensor_models::Lms200Model(setup.lms).ScanPeriodS();
+    p.cas.a = a;
+    if (unknown != mapper::Unknown::kZero) {
+        p.Set("unknown", mapper::ToString(unknown));
+    }
     for (const std::string& o : overrides) {
         p.SetAssignment(o);
     }
@@ -273,65 +214,19 @@ mapper::FilterParams RunFilterParams(const MappedBenchRun& run,
     return p;
 }
 
-BenchRun ScoreRun(const MappedBenchRun& run,
-                  const Course& course,
-                  const mapper::FilterParams& params,
-                  SheetMaps* sheet) {
-    const core::MapF& raw = run.mapped.elevation;
-    const core::MapF& c = run.mapped.certainty;
-    const mapper::Region region = mapper::PaperRegion(raw.rows, raw.cols);
-    BenchRun out;
-    out.course = run.course;
-    out.test = run.test;
-    out.seed = run.setup.seed;
-    out.scans = static_cast<std::int64_t>(run.scans);
-    const mapper::FilterResult cas = mapper::RunFilter(mapper::FilterMethod::kCas, raw, c, params);
-    out.cas_classes = mapper::ClassPercentages(cas.classes, c);
-    const std::vector<Pole> poles = Poles(course.scene, run.setup.grid);
-    for (const Pole& p : poles) {
-        out.poles.push_back(p.name);
-    }
-    out.poles_kept["raw"] = KeptPoles(raw, poles);
-    for (const mapper::FilterMethod m : mapper::AllFilterMethods()) {
-        const std::string name(mapper::ToString(m));
-        const mapper::FilterResult result =
-            m == mapper::FilterMethod::kCas ? cas : mapper::RunFilter(m, raw, c, params);
-        const mapper::FilterMetrics metrics =
-            mapper::EvaluateFilter(result, raw, course.truth, region);
-        out.filters[name] =
-            FilterScore{metrics.pi, metrics.rmse_m, metrics.spikes,
-                        FillError(result.elevation, course.truth, cas.classes, region)};
-        out.poles_kept[name] = KeptPoles(result.elevation, poles);
-        out.raw_rmse_m = metrics.raw_rmse_m;
-        out.raw_spikes = metrics.raw_spikes;
-        if (sheet != nullptr) {
-            sheet->filtered[name] = result.elevation;
-        }
-    }
-    if (sheet != nullptr) {
-        sheet->raw = raw;
-        sheet->certainty = c;
-        sheet->truth = course.truth;
-        sheet->cas_classes = cas.classes;
-    }
-    return out;
+mapper::FilterParams RunFilterParams(const MappedBenchRun& run,
+                                     const std::vector<std::string>& overrides) {
+    return SetupFilterParams(run.setup, run.mapped.config.a, run.mapped.settings.unknown,
+                             overrides);
 }
 
-CasScore ScoreCas(const MappedBenchRun& run,
-                  const Course& course,
-                  const mapper::FilterParams& params,
-                  mapper::FilterMethod method) {
-    const core::MapF& raw = run.mapped.elevation;
-    const mapper::FilterResult cas = mapper::RunFilter(method, raw, run.mapped.certainty, params);
-    const mapper::Region region = mapper::PaperRegion(raw.rows, raw.cols);
-    const std::vector<Pole> poles = Poles(course.scene, run.setup.grid);
-    CasScore score;
-    score.pi = mapper::PerformanceIndex(cas.elevation, raw, course.truth, region);
-    score.classes = mapper::ClassPercentages(cas.classes, run.mapped.certainty);
-    score.spikes = mapper::CountSpikes(cas.elevation, course.truth, region);
-    score.poles = poles.size();
-    score.poles_kept = KeptPoles(cas.elevation, poles).size();
-    return score;
+Course LoadSceneCourse(const std::string& path, const core::GridGeometry& grid) {
+    Course c;
+    c.path = path;
+    c.scene = io::LoadScene(path);
+    c.world = std::make_unique<sim::World>(c.scene);
+    c.truth = sim::GroundTruthElevation(c.scene, grid, 1);
+    return c;
 }
 
 BenchSettings ResolveBenchSettings(const std::string& courses_dir,

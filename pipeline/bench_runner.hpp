@@ -88,11 +88,13 @@ struct MappedBenchRun {
                                             const Course& course,
                                             const core::Trajectory& poses);
 
-/// Maps a simulated run on the setup's grid with the mapper's `a`.
+/// Maps a simulated run on the setup's grid with the paper's mapper (Eq. 1-6), its `a` and
+/// the unknown-cell convention.
 [[nodiscard]] MappedBenchRun MapBenchRun(const SimSetup& setup,
                                          const Course& course,
                                          const SimulatedRun& sim,
-                                         int a);
+                                         int a,
+                                         mapper::Unknown unknown = mapper::Unknown::kZero);
 
 /// SimulateBenchRun then MapBenchRun.
 [[nodiscard]] MappedBenchRun SimulateAndMap(const SimSetup& setup,
@@ -100,13 +102,36 @@ struct MappedBenchRun {
                                             const core::Trajectory& poses,
                                             int a);
 
-/// The CAS parameters a run implies (cell size, speed, scan period, a), then `overrides`
-/// (NAME=VALUE, FilterParams::Set) applied.
+/// The filter parameters a setup implies (cell size, the table's or vehicle's speed, scan
+/// period, `a`, `unknown`), then `overrides` (NAME=VALUE, FilterParams::Set: a preset's
+/// settings, then --set) applied, then validated.
+[[nodiscard]] mapper::FilterParams SetupFilterParams(const SimSetup& setup,
+                                                     int a,
+                                                     mapper::Unknown unknown,
+                                                     const std::vector<std::string>& overrides);
+
+/// SetupFilterParams for a mapped run (its setup, a and unknown convention).
 [[nodiscard]] mapper::FilterParams RunFilterParams(const MappedBenchRun& run,
                                                    const std::vector<std::string>& overrides);
 
-/// Runs the five filters and scores them against the course's truth over the paper's region.
-/// Fills `sheet` (raw, truth, filtered maps) when non-null.
+/// Any scene file as a benchmark "course" (number 0): scene, world, truth on `grid` (the
+/// datum clamp of sim::GroundTruthElevation's default: terrain scenes keep negative heights).
+[[nodiscard]] Course LoadSceneCourse(const std::string& path, const core::GridGeometry& grid);
+
+/// Runs the named pipelines (bench_pipelines.hpp) on one run and scores each against the
+/// course's truth over the paper's region, Eq. 11's denominator being `run`'s map (the plain
+/// raw map). Pipelines with another mapper mode or a scan pre-filter map `sim`'s scans again
+/// (same beams, no new simulation); `sim` may be null when none does (InputError otherwise).
+/// The map filters use `params` (unknown convention included). Fills `sheet` (raw, truth,
+/// the paper's filtered maps present, CAS classes) when non-null.
+[[nodiscard]] BenchRun ScorePipelines(const MappedBenchRun& run,
+                                      const SimulatedRun* sim,
+                                      const Course& course,
+                                      const mapper::FilterParams& params,
+                                      const std::vector<std::string>& pipelines,
+                                      SheetMaps* sheet);
+
+/// ScorePipelines with the paper's five filters (no re-mapping).
 [[nodiscard]] BenchRun ScoreRun(const MappedBenchRun& run,
                                 const Course& course,
                                 const mapper::FilterParams& params,

@@ -120,12 +120,18 @@ std::string EncodeBenchRun(const BenchRunRecord& record) {
         w.Put(s.rmse_m);
         w.Put(s.spikes);
         w.Put(s.fill_error_m);
+        w.Put(s.cells);
+        w.Put(s.coverage);
+        w.Put(s.edge_rmse_m);
+        w.Put(s.open_rmse_m);
     }
     w.Put(r.cas_classes.all);
     w.Put(r.cas_classes.observed);
     w.Put(r.raw_rmse_m);
     w.Put(r.raw_spikes);
     w.Put(r.scans);
+    w.Put(r.scene);
+    w.Put(r.unknown);
     w.Put(r.poles);
     w.Put<std::uint64_t>(r.poles_kept.size());
     for (const auto& [name, kept] : r.poles_kept) {
@@ -168,12 +174,18 @@ BenchRunRecord DecodeBenchRun(const std::string& bytes) {
         s.rmse_m = in.Get<double>();
         s.spikes = in.Get<std::int64_t>();
         s.fill_error_m = in.Get<double>();
+        s.cells = in.Get<std::int64_t>();
+        s.coverage = in.Get<double>();
+        s.edge_rmse_m = in.Get<double>();
+        s.open_rmse_m = in.Get<double>();
     }
     r.cas_classes.all = in.Shares();
     r.cas_classes.observed = in.Shares();
     r.raw_rmse_m = in.Get<double>();
     r.raw_spikes = in.Get<std::int64_t>();
     r.scans = in.Get<std::int64_t>();
+    r.scene = in.String();
+    r.unknown = in.String();
     r.poles = in.Strings();
     for (auto n = in.Get<std::uint64_t>(); n > 0; --n) {
         const std::string name = in.String();

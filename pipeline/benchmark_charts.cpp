@@ -160,7 +160,8 @@ void DrawPanel(cv::Mat& img,
         const cv::Scalar colour = FilterColour(name);
         cv::Point prev(-1, -1);
         for (std::size_t i = 0; i < n; ++i) {
-            const double pi = runs[i]->filters.at(name).pi;
+            const auto found = runs[i]->filters.find(name);
+            const double pi = found != runs[i]->filters.end() ? found->second.pi : std::nan("");
             if (!std::isfinite(pi)) {
                 prev = {-1, -1};
                 continue;
@@ -184,7 +185,8 @@ void DrawPanel(cv::Mat& img,
 void WritePiChart(const fs::path& path, const std::vector<BenchRun>& runs) {
     std::vector<std::string> tests;
     for (const char* t : {"T", "TR", "TP", "TRP"}) {
-        if (std::any_of(runs.begin(), runs.end(), [&](const BenchRun& r) { return r.test == t; })) {
+        if (std::any_of(runs.begin(), runs.end(),
+                        [&](const BenchRun& r) { return r.test == t && r.scene.empty(); })) {
             tests.push_back(t);
         }
     }
@@ -192,9 +194,10 @@ void WritePiChart(const fs::path& path, const std::vector<BenchRun>& runs) {
     // the scale and drawn as an arrow).
     double y_max = 0.0;
     for (const BenchRun& r : runs) {
-        for (const auto& [name, f] : r.filters) {
-            if (std::isfinite(f.pi) && f.pi <= 2.0) {
-                y_max = std::max(y_max, f.pi);
+        for (const std::string& name : BenchFilterNames()) {
+            const auto f = r.filters.find(name);
+            if (f != r.filters.end() && std::isfinite(f->second.pi) && f->second.pi <= 2.0) {
+                y_max = std::max(y_max, f->second.pi);
             }
         }
     }
@@ -217,7 +220,7 @@ void WritePiChart(const fs::path& path, const std::vector<BenchRun>& runs) {
     for (std::size_t k = 0; k < tests.size(); ++k) {
         std::vector<const BenchRun*> sel;
         for (const BenchRun& r : runs) {
-            if (r.test == tests[k]) {
+            if (r.test == tests[k] && r.scene.empty()) {
                 sel.push_back(&r);
             }
         }
@@ -246,7 +249,10 @@ void WriteSheet(const fs::path& path, const SheetMaps& maps, const std::string& 
     std::vector<std::pair<std::string, const core::MapF*>> panels = {{"raw", &maps.raw},
                                                                      {"ground truth", &maps.truth}};
     for (const std::string& name : BenchFilterNames()) {
-        panels.emplace_back(FilterDisplayName(name), &maps.filtered.at(name));
+        const auto it = maps.filtered.find(name);
+        if (it != maps.filtered.end()) {
+            panels.emplace_back(FilterDisplayName(name), &it->second);
+        }
     }
     const int rows = maps.truth.rows;
     const int cols = maps.truth.cols;

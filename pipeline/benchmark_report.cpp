@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "casmap/pipeline/bench_pipelines.hpp"
+
 namespace casmap::pipeline {
 namespace {
 
@@ -54,9 +56,23 @@ std::string JsonNumber(double value) {
 std::string JsonString(const std::string& text) { return Json(text).dump(); }
 
 namespace {
-Json ScoreJson(const FilterScore& f) {
-    return Json{
-        {"pi", f.pi}, {"rmse_m", f.rmse_m}, {"spikes", f.spikes}, {"fill_error_m", f.fill_error_m}};
+/// A double, or null for NaN/inf (nlohmann writes non-finite numbers as null too; explicit
+/// here so the intent is visible).
+Json Num(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+Json ScoreJson(const FilterScore& f, const BenchRun& r, const std::string& name) {
+    const auto kept = r.poles_kept.find(name);
+    const std::size_t poles_kept = kept == r.poles_kept.end() ? 0 : kept->second.size();
+    return Json{{"pi", f.pi},
+                {"rmse_m", f.rmse_m},
+                {"spikes", f.spikes},
+                {"fill_error_m", f.fill_error_m},
+                {"coverage", Num(f.coverage)},
+                {"cells", f.cells},
+                {"rmse_edge_m", Num(f.edge_rmse_m)},
+                {"rmse_open_m", Num(f.open_rmse_m)},
+                {"poles_kept", poles_kept},
+                {"poles", r.poles.size()}};
 }
 
 Json SharesJson(const mapper::ClassShares& s) {
@@ -67,8 +83,12 @@ Json SharesJson(const mapper::ClassShares& s) {
 /// One run of bench.json (issue 5's shape; NaN is written as null).
 Json RunJson(const BenchRun& r) {
     Json filters = Json::object();
-    for (const std::string& name : BenchFilterNames()) {
-        filters[name] = ScoreJson(r.filters.at(name));
+    std::vector<std::string> pipelines;
+    for (const auto& [name, score] : r.filters) {
+        pipelines.push_back(name);
+    }
+    for (const std::string& name : InPipelineOrder(pipelines)) {
+        filters[name] = ScoreJson(r.filters.at(name), r, name);
     }
     Json observed = SharesJson(r.cas_classes.observed);
     observed["cells"] = r.cas_classes.observed.cells;
@@ -76,17 +96,21 @@ Json RunJson(const BenchRun& r) {
     for (const auto& [map, names] : r.poles_kept) {
         kept[map] = names;
     }
-    return Json{{"course", r.course},
-                {"test", r.test},
-                {"seed", r.seed},
-                {"scans", r.scans},
-                {"filters", filters},
-                {"cas_classes_pct", SharesJson(r.cas_classes.all)},
-                {"cas_processed_cells", r.cas_classes.all.cells},
-                {"cas_classes_observed_pct", observed},
-                {"raw", Json{{"rmse_m", r.raw_rmse_m}, {"spikes", r.raw_spikes}}},
-                {"poles", r.poles},
-                {"poles_kept", kept}};
+    Json run{{"course", r.course}, {"test", r.test}};
+    if (!r.scene.empty()) {
+        run["scene"] = r.scene;
+    }
+    run.update(Json{{"seed", r.seed},
+                    {"scans", r.scans},
+                    {"unknown", r.unknown},
+                    {"filters", filters},
+                    {"cas_classes_pct", SharesJson(r.cas_classes.all)},
+                    {"cas_processed_cells", r.cas_classes.all.cells},
+                    {"cas_classes_observed_pct", observed},
+                    {"raw", Json{{"rmse_m", r.raw_rmse_m}, {"spikes", r.raw_spikes}}},
+                    {"poles", r.poles},
+                    {"poles_kept", kept}});
+    return run;
 }
 }  // namespace
 
@@ -103,25 +127,39 @@ std::string BenchJson(const std::vector<BenchRun>& runs, double elapsed_s, int t
 }
 
 std::string PiTable(const std::vector<BenchRun>& runs) {
-    std::string t = "course test ";
+    std::vector<std::string> shown;  // the paper's filters some run has
     for (const std::string& name : BenchFilterNames()) {
+        for (const BenchRun& r : runs) {
+            if (r.filters.count(name) != 0) {
+                shown.push_back(name);
+                break;
+            }
+        }
+    }
+    std::string t = "course test ";
+    for (const std::string& name : shown) {
         char buf[32];
         std::snprintf(buf, sizeof(buf), "%9s", name.c_str());
         t += buf;
     }
     t += "   (PI, Eq. 11; lower is better; * = best)\n";
     for (const BenchRun& r : runs) {
+        if (!r.scene.empty()) {
+            continue;  // scene runs: PipelinesMarkdown
+        }
         char head[32];
         std::snprintf(head, sizeof(head), "%6d %-4s ", r.course, r.test.c_str());
         t += head;
         double best = std::numeric_limits<double>::infinity();
-        for (const auto& [name, f] : r.filters) {
-            if (std::isfinite(f.pi)) {
-                best = std::min(best, f.pi);
+        for (const std::string& name : shown) {
+            const auto it = r.filters.find(name);
+            if (it != r.filters.end() && std::isfinite(it->second.pi)) {
+                best = std::min(best, it->second.pi);
             }
         }
-        for (const std::string& name : BenchFilterNames()) {
-            const double pi = r.filters.at(name).pi;
+        for (const std::string& name : shown) {
+            const auto it = r.filters.find(name);
+            const double pi = it != r.filters.end() ? it->second.pi : std::nan("");
             char buf[32];
             std::snprintf(buf, sizeof(buf), "%8s%c", Fixed(pi, 3).c_str(), pi == best ? '*' : ' ');
             t += buf;
@@ -153,7 +191,7 @@ std::string TableTwoMarkdown(const std::vector<BenchRun>& runs) {
         md += "|---|---|---|---|---|---|---|";
         md += test == "T" ? "---|---|---|\n" : "\n";
         for (const BenchRun& r : runs) {
-            if (r.test != test) {
+            if (r.test != test || !r.scene.empty()) {
                 continue;
             }
             const mapper::ClassShares& a = r.cas_classes.all;
@@ -175,18 +213,41 @@ std::string TableTwoMarkdown(const std::vector<BenchRun>& runs) {
     return md;
 }
 
+namespace {
+/// The pipelines some run has, in AllPipelines() order.
+std::vector<std::string> PresentPipelines(const std::vector<BenchRun>& runs) {
+    std::set<std::string> names;
+    for (const BenchRun& r : runs) {
+        for (const auto& [name, score] : r.filters) {
+            names.insert(name);
+        }
+    }
+    return InPipelineOrder({names.begin(), names.end()});
+}
+
+std::string DisplayName(const std::string& name) {
+    for (const std::string& paper : BenchFilterNames()) {
+        if (paper == name) {
+            return FilterDisplayName(name);
+        }
+    }
+    return name;
+}
+}  // namespace
+
 std::string PolesMarkdown(const std::vector<BenchRun>& runs) {
+    const std::vector<std::string> shown = PresentPipelines(runs);
     static const char* const kDiameters[] = {"24", "21", "19", "15", "11", "9", "6", "4.5", "2.5"};
     std::string md =
         "# Poles kept per filter\n\nA map keeps a pole when it reaches half the pole's height "
         "(0.457 m) within one cell of the pole's cell. Counts are runs that kept the pole / runs "
         "whose raw map showed it (runs where the raw map missed it cannot count).\n\n"
         "| pole | diameter (mm) | runs | raw |";
-    for (const std::string& f : BenchFilterNames()) {
-        md += " " + FilterDisplayName(f) + " |";
+    for (const std::string& f : shown) {
+        md += " " + DisplayName(f) + " |";
     }
     md += "\n|---|---|---|---|";
-    for (std::size_t i = 0; i < BenchFilterNames().size(); ++i) {
+    for (std::size_t i = 0; i < shown.size(); ++i) {
         md += "---|";
     }
     md += "\n";
@@ -209,7 +270,7 @@ std::string PolesMarkdown(const std::vector<BenchRun>& runs) {
                 continue;
             }
             ++seen;
-            for (const std::string& f : BenchFilterNames()) {
+            for (const std::string& f : shown) {
                 count[f] += kept(r, f) ? 1 : 0;
             }
         }
@@ -218,10 +279,116 @@ std::string PolesMarkdown(const std::vector<BenchRun>& runs) {
         }
         md += "| " + pole + " | " + kDiameters[k - 1] + " | " + std::to_string(present) + " | " +
               std::to_string(seen) + " |";
-        for (const std::string& f : BenchFilterNames()) {
+        for (const std::string& f : shown) {
             md += " " + std::to_string(count[f]) + "/" + std::to_string(seen) + " |";
         }
         md += "\n";
+    }
+    return md;
+}
+
+std::string BenchRunName(const BenchRun& run) {
+    if (run.scene.empty()) {
+        char name[48];
+        std::snprintf(name, sizeof(name), "course%02d_%s", run.course, run.test.c_str());
+        return name;
+    }
+    return SceneRunStem(run.scene) + "_" + run.test;
+}
+
+std::string SceneRunStem(const std::string& scene_path) {
+    const std::filesystem::path p(scene_path);
+    std::string stem = p.stem().string();
+    if (stem == "scene" && p.has_parent_path()) {  // casmap dataset samples: NNNNNN/scene.yaml
+        stem = p.parent_path().filename().string() + "_" + stem;
+    }
+    return stem;
+}
+
+std::string PipelinesMarkdown(const std::vector<BenchRun>& runs) {
+    const std::vector<std::string> shown = PresentPipelines(runs);
+    // Groups: each test of the paper's courses, then each scene run on its own.
+    std::vector<std::pair<std::string, std::vector<const BenchRun*>>> groups;
+    for (const char* test : {"T", "TR", "TP", "TRP"}) {
+        std::vector<const BenchRun*> members;
+        for (const BenchRun& r : runs) {
+            if (r.scene.empty() && r.test == test) {
+                members.push_back(&r);
+            }
+        }
+        if (!members.empty()) {
+            groups.emplace_back(
+                std::string("Test ") + test + " (" + std::to_string(members.size()) + " courses)",
+                members);
+        }
+    }
+    for (const BenchRun& r : runs) {
+        if (!r.scene.empty()) {
+            groups.emplace_back("Scene " + BenchRunName(r) + " (" + r.scene + ")",
+                                std::vector<const BenchRun*>{&r});
+        }
+    }
+    std::string md =
+        "# Pipelines side by side\n\nPer pipeline (docs/paper-notes.md \"Named pipelines\"): "
+        "mean PI (Eq. 11 against the plain raw map), runs where it has the lowest PI of the "
+        "pipelines listed, mean RMSE on truth-edge / open / all scored cells (mm), mean "
+        "surviving spikes, poles kept / poles over the runs, mean coverage (scored cells / "
+        "cells the raw map knows). Unknown cells: each run's convention (0 on the paper's "
+        "courses, NaN on terrain scenes: RMSEs then cover observed cells only).\n";
+    for (const auto& [title, members] : groups) {
+        md += "\n## " + title +
+              "\n\n| pipeline | PI | lowest PI | RMSE edges | RMSE open |"
+              " RMSE all | spikes | poles kept | coverage |\n"
+              "|---|---|---|---|---|---|---|---|---|\n";
+        std::map<std::string, int> wins;
+        for (const BenchRun* r : members) {
+            double best = std::numeric_limits<double>::infinity();
+            for (const std::string& name : shown) {
+                const auto it = r->filters.find(name);
+                if (it != r->filters.end() && std::isfinite(it->second.pi)) {
+                    best = std::min(best, it->second.pi);
+                }
+            }
+            for (const std::string& name : shown) {
+                const auto it = r->filters.find(name);
+                wins[name] += it != r->filters.end() && it->second.pi == best ? 1 : 0;
+            }
+        }
+        for (const std::string& name : shown) {
+            std::array<double, 6> sum{};  // pi, edge, open, all, spikes, coverage
+            std::array<int, 6> n{};
+            std::size_t kept = 0;
+            std::size_t poles = 0;
+            const auto add = [&](std::size_t i, double v) {
+                if (std::isfinite(v)) {
+                    sum[i] += v;
+                    ++n[i];
+                }
+            };
+            for (const BenchRun* r : members) {
+                const auto it = r->filters.find(name);
+                if (it == r->filters.end()) {
+                    continue;
+                }
+                const FilterScore& f = it->second;
+                add(0, f.pi);
+                add(1, 1000.0 * f.edge_rmse_m);
+                add(2, 1000.0 * f.open_rmse_m);
+                add(3, 1000.0 * f.rmse_m);
+                add(4, static_cast<double>(f.spikes));
+                add(5, f.coverage);
+                const auto k = r->poles_kept.find(name);
+                kept += k == r->poles_kept.end() ? 0 : k->second.size();
+                poles += r->poles.size();
+            }
+            const auto mean = [&](std::size_t i, int decimals) {
+                return n[i] > 0 ? Fixed(sum[i] / n[i], decimals) : std::string("-");
+            };
+            md += "| " + name + " | " + mean(0, 3) + " | " + std::to_string(wins[name]) + "/" +
+                  std::to_string(members.size()) + " | " + mean(1, 1) + " | " + mean(2, 1) + " | " +
+                  mean(3, 1) + " | " + mean(4, 1) + " | " + std::to_string(kept) + "/" +
+                  std::to_string(poles) + " | " + mean(5, 3) + " |\n";
+        }
     }
     return md;
 }

@@ -1,5 +1,6 @@
 // casmap bench [--courses 1-16] [--tests T,TR,TP,TRP] [--seed N] [--out DIR] [--json FILE]
 //              [--rig RIG.yaml] [--sensor LMS200.yaml] [--set NAME=VALUE]... [--no-sheets] [--maps]
+//              [--pipelines LIST|all] [--scenes A.yaml,B.yaml --motion vehicle] [--preset NAME]
 // The paper's benchmark (pipeline::RunBench): every course x test simulated, mapped, filtered
 // by CAS and the four baselines and scored against the exact ground truth.
 // Outputs (DIR, default out/bench): bench.json, pi_chart.png (Fig. 8), table2.md (Table II),
@@ -14,6 +15,7 @@
 #include "apps/casmap/flag_names.hpp"
 #include "apps/casmap/progress_bar.hpp"
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/output_set.hpp"
 #include "casmap/pipeline/bench.hpp"
@@ -29,18 +31,32 @@ struct BenchFlags {
     std::string out = "out/bench";
     std::string json;
     bool no_sheets = false;
-    bool maps = false;  // --maps: runs/<run>/*.tif + maps.json for casmap view
+    bool maps = false;      // --maps: runs/<run>/*.tif + maps.json for casmap view
+    std::string pipelines;  // empty: the paper's five
+    std::string scenes;
+    std::string motion = "vehicle";
     pipeline::BenchOptions options;
 };
 
-const FlagNames kFlags = {{"courses", "--courses"},         {"tests", "--tests"},
-                          {"courses_dir", "--courses-dir"}, {"rig_path", "--rig"},
-                          {"sensor_path", "--sensor"},      {"filter_settings", "--set"},
-                          {"threads", "--threads"}};
+const FlagNames kFlags = {
+    {"courses", "--courses"},      {"tests", "--tests"},         {"courses_dir", "--courses-dir"},
+    {"rig_path", "--rig"},         {"sensor_path", "--sensor"},  {"filter_settings", "--set"},
+    {"threads", "--threads"},      {"pipelines", "--pipelines"}, {"scenes", "--scenes"},
+    {"scene_motions", "--motion"}, {"preset", "--preset"}};
 
-void RunBench(BenchFlags& flags, const CommonOptions& common) {
+void RunBench(BenchFlags& flags, const CommonOptions& common, bool courses_given) {
     pipeline::BenchOptions& opt = flags.options;
-    opt.courses = pipeline::ParseCourses(flags.courses, "--courses");
+    if (!flags.scenes.empty()) {
+        opt.scenes = core::SplitList(flags.scenes);
+        opt.scene_motions = core::SplitList(flags.motion);
+    }
+    // With --scenes the paper's courses run only when --courses is given.
+    opt.courses = !flags.scenes.empty() && !courses_given
+                      ? std::vector<int>{}
+                      : pipeline::ParseCourses(flags.courses, "--courses");
+    if (!flags.pipelines.empty()) {
+        opt.pipelines = pipeline::ParsePipelines(flags.pipelines, "--pipelines");
+    }
     opt.tests = pipeline::ParseTests(flags.tests, "--tests");
     opt.sheets = !flags.no_sheets;
     opt.maps = flags.maps;
@@ -81,6 +97,9 @@ void RunBench(BenchFlags& flags, const CommonOptions& common) {
     }
     outputs.Publish();
     std::fputs(pipeline::PiTable(result.runs).c_str(), stdout);
+    if (!flags.pipelines.empty() || !opt.scenes.empty()) {
+        std::fputs(("\n" + pipeline::PipelinesMarkdown(result.runs)).c_str(), stdout);
+    }
     std::printf("%zu runs in %.1f s on %d threads x %d rank(s) -> %s\n", result.runs.size(),
                 result.elapsed_s, result.threads, session.ranks(), flags.out.c_str());
 }
@@ -105,11 +124,25 @@ void AddBenchCommand(CLI::App& app, CommonOptions& common) {
                     "LMS 200 YAML (config/lms200.yaml; default: the built-in config)");
     sub->add_option("--set", opt.filter_settings,
                     "filter parameter NAME=VALUE (see casmap filter)");
+    sub->add_option("--pipelines", flags->pipelines,
+                    "named pipelines to score, comma list or all (default: the paper's five: "
+                    "cas,wiener,average,median,cwm; docs/commands/bench.md)");
+    sub->add_option("--scenes", flags->scenes,
+                    "further scene YAMLs (comma list), e.g. scenes/outdoor.yaml; unknown cells "
+                    "NaN; the courses then run only with --courses");
+    sub->add_option("--motion", flags->motion, "motions of the --scenes runs: vehicle, T, ...")
+        ->capture_default_str();
+    sub->add_option("--preset", opt.preset,
+                    "filter-parameter preset: config/presets/NAME.yaml (paper, tuned) or a "
+                    "file; --set overrides it");
     sub->add_flag("--no-sheets", flags->no_sheets, "skip the per-run Fig. 7 sheets");
     sub->add_flag("--maps", flags->maps,
                   "also write each run's maps as float TIFFs (runs/<run>/, for casmap view)");
+    CLI::Option* courses = sub->get_option("--courses");
     AddThreadsOption(sub, common);
-    sub->callback([flags, &common] { WithFlagNames(kFlags, [&] { RunBench(*flags, common); }); });
+    sub->callback([flags, &common, courses] {
+        WithFlagNames(kFlags, [&] { RunBench(*flags, common, courses->count() > 0); });
+    });
 }
 
 }  // namespace casmap::app

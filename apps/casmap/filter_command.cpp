@@ -1,6 +1,6 @@
 // casmap filter --method cas|wiener|average|median|cwm|cas_terrain|cas_trail --elevation H.tiff
 // [--certainty C.tiff]
-//               [--set NAME=VALUE]... --out OUT.tiff [--threads N]
+//               [--preset NAME] [--set NAME=VALUE]... --out OUT.tiff [--threads N]
 // Filters an elevation map (32-bit float TIFF, metres) with one of the paper's five filters and
 // writes OUT.tiff (32-bit float), OUT.png (colour, legend) and, for cas, OUT_classes.tiff
 // (PixelClass codes as floats: 0 untouched, 1 removed, 2 filled, 3 unprocessed border) and
@@ -18,6 +18,7 @@
 #include "casmap/io/image.hpp"
 #include "casmap/mapper/filters.hpp"
 #include "casmap/mapper/metrics.hpp"
+#include "casmap/pipeline/preset.hpp"
 
 namespace casmap::app {
 namespace {
@@ -28,6 +29,7 @@ struct FilterOptions {
     std::string elevation;
     std::string certainty;
     std::string out;
+    std::string preset;
     std::vector<std::string> sets;
 };
 
@@ -72,6 +74,11 @@ const std::vector<io::ClassLegendEntry>& ClassLegend() {
 void RunFilterCommand(const FilterOptions& opt) {
     const mapper::FilterMethod method = mapper::ParseFilterMethod(opt.method, "--method");
     mapper::FilterParams params;
+    if (!opt.preset.empty()) {  // a preset first, --set overrides it
+        for (const std::string& s : pipeline::LoadPreset(opt.preset, "--preset").settings) {
+            params.SetAssignment(s);
+        }
+    }
     for (const std::string& s : opt.sets) {
         params.SetAssignment(s);
     }
@@ -151,7 +158,10 @@ void AddFilterCommand(CLI::App& app, CommonOptions& common) {
         ->required();
     sub->add_option("--certainty", opt->certainty,
                     "certainty map C, 32-bit float TIFF (counts); required for cas");
-    sub->add_option("--set", opt->sets, "filter parameter NAME=VALUE (repeatable)");
+    sub->add_option("--preset", opt->preset,
+                    "filter-parameter preset: config/presets/NAME.yaml (paper, tuned) or a file");
+    sub->add_option("--set", opt->sets,
+                    "filter parameter NAME=VALUE (repeatable; overrides --preset)");
     sub->add_option("--out", opt->out, "output OUT.tiff (also OUT.png; OUT_classes.* for cas)")
         ->required();
     AddThreadsOption(sub, common);

@@ -123,7 +123,16 @@ TEST(BenchCommand, BadInputExitsTwoWithOneLineAndNoJson) {
         {"sweep --courses 4 --train-seeds x", "--train-seeds = x"},
         {"sweep --courses 4 --grow 99", "--grow = 99"},
         {"sweep --courses 4 --test-courses 17", "--test-courses"},
+        {"bench --pipelines cas,bogus" + json, "--pipelines"},
+        {"bench --preset no_such_preset" + json, "--preset"},
+        {"bench --preset " + (dir / "bad_preset.yaml").string() + json, "set.A"},
+        {"bench --scenes /nonexistent/s.yaml" + json, "--scenes"},
+        {"bench --scenes " + std::string(CASMAP_SOURCE_DIR) + "/scenes/outdoor.yaml --motion fly" +
+             json,
+         "--motion"},
+
     };
+    std::ofstream(dir / "bad_preset.yaml") << "set:\n  A: -3\n";
     for (const Case& c : cases) {
         const Result r = Casmap(c.args + " --out " + (dir / "out").string());
         EXPECT_EQ(r.code, 2) << c.args << "\n" << r.output;
@@ -132,6 +141,48 @@ TEST(BenchCommand, BadInputExitsTwoWithOneLineAndNoJson) {
     }
     EXPECT_FALSE(fs::exists(dir / "x.json"));
     EXPECT_FALSE(fs::exists(dir / "out" / "bench.json"));
+    // casmap filter takes the same presets.
+    const Result f = Shell(std::string(CASMAP_EXE) +
+                           " filter --method cas --preset no_such_preset --elevation x.tiff "
+                           "--out " +
+                           (dir / "y.tiff").string());
+    EXPECT_EQ(f.code, 2) << f.output;
+    EXPECT_NE(f.output.find("--preset"), std::string::npos) << f.output;
+}
+
+// Named pipelines and a preset from the command line: the summary table is printed and
+// written, bench.json holds every pipeline asked for, --set overrides the preset.
+TEST(BenchCommand, PipelinesAndPresetsFromTheCommandLine) {
+    if (!HaveSimulator()) {
+        GTEST_SKIP() << "built without the simulator";
+    }
+    const fs::path dir = FreshDir("pipelines");
+    std::ofstream(dir / "trial.yaml") << "description: test\nset:\n  A: 45\n  h_sum_min: 10\n";
+    Result r = Casmap(
+        "bench --courses 4 --tests T --no-sheets --threads 2 --pipelines "
+        "raw,kalman,cas,range_jump_cas --preset " +
+        (dir / "trial.yaml").string() + " --set h_sum_min=9 --out " + (dir / "a").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("# Pipelines side by side"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("| kalman |"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "a" / "pipelines.md"));
+    const std::string yaml = ReadText(dir / "a" / "runs" / "course04_T.yaml");
+    EXPECT_NE(yaml.find("A: 45"), std::string::npos) << yaml;
+    EXPECT_NE(yaml.find("h_sum_min: 9"), std::string::npos) << yaml;
+    EXPECT_NE(yaml.find("preset: "), std::string::npos) << yaml;
+    const std::string json = ReadText(dir / "a" / "bench.json");
+    for (const char* name : {"\"raw\"", "\"kalman\"", "\"cas\"", "\"range_jump_cas\""}) {
+        EXPECT_NE(json.find(std::string(name) + ":{\"pi\""), std::string::npos) << name;
+    }
+    EXPECT_EQ(json.find("\"median\":{\"pi\""), std::string::npos);
+    // The paper preset changes nothing.
+    r = Casmap("bench --courses 4 --tests T --no-sheets --threads 1 --out " + (dir / "b").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    r = Casmap("bench --courses 4 --tests T --no-sheets --threads 1 --preset paper --out " +
+               (dir / "c").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(RunsPart(ReadText(dir / "b" / "bench.json")),
+              RunsPart(ReadText(dir / "c" / "bench.json")));
 }
 
 TEST(BenchCommand, KilledBenchLeavesNoHalfWrittenJson) {

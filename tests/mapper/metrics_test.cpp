@@ -82,7 +82,29 @@ TEST(Metrics, EvaluateFilterReportsFilledAndEdgeErrors) {
     EXPECT_NEAR(m.pi, 0.01 / 0.16, 1e-6);
     // Edge cells: the box cell and its 4 neighbours; only the box cell is off by 0.1.
     EXPECT_NEAR(m.edge_rmse_m, std::sqrt(0.01 / 5), 1e-6);
+    EXPECT_EQ(m.edge_cells, 5);
+    // Open cells: the other 20, all exact; an error there shows in open_rmse_m only.
+    EXPECT_EQ(m.open_cells, 20);
+    EXPECT_EQ(m.open_rmse_m, 0.0);
+    r.elevation.at(0, 0) = 0.2F;
+    const FilterMetrics m2 = EvaluateFilter(r, raw, truth, FullRegion(5, 5));
+    EXPECT_NEAR(m2.open_rmse_m, std::sqrt(0.04 / 20), 1e-6);
+    EXPECT_NEAR(m2.edge_rmse_m, m.edge_rmse_m, 1e-12);
     EXPECT_EQ(m.spikes, 0);
+}
+
+TEST(Metrics, EdgeAndOpenCellsLeaveOutUnknownCells) {
+    core::MapF truth(5, 5, 0.0F);
+    truth.at(2, 2) = 0.4F;
+    core::MapF raw(5, 5, 0.0F);
+    raw.at(2, 3) = std::nanf("");  // an edge cell the raw map never saw
+    raw.at(0, 0) = std::nanf("");  // an open cell the raw map never saw
+    FilterResult r;
+    r.elevation = raw;
+    const FilterMetrics m = EvaluateFilter(r, raw, truth, FullRegion(5, 5));
+    EXPECT_EQ(m.edge_cells, 4);
+    EXPECT_EQ(m.open_cells, 19);
+    EXPECT_EQ(m.cells, 23);
 }
 
 }  // namespace

@@ -9,9 +9,11 @@ src=$3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$src"
-"$casmap" bench --courses 4 --tests T,TR --out "$work/one" --threads 1 > /dev/null
+# Every named pipeline and a terrain scene run too (the wire carries all their scores).
+more="--pipelines all --scenes scenes/outdoor.yaml"
+"$casmap" bench --courses 4 --tests T,TR $more --out "$work/one" --threads 1 > /dev/null
 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader \
-    "$mpirun" --oversubscribe -n 2 "$casmap" bench --courses 4 --tests T,TR --out "$work/two" \
+    "$mpirun" --oversubscribe -n 2 "$casmap" bench --courses 4 --tests T,TR $more --out "$work/two" \
     --threads 1 > "$work/two.txt"
 grep -q "2 rank(s)" "$work/two.txt"
 diff -r -x bench.json "$work/one" "$work/two"

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -107,6 +110,169 @@ TEST(RunBench, OneRunIsThreadIndependentAndReportsProgress) {
     options.threads = 2;
     const BenchResult two = RunBench(options);
     EXPECT_EQ(BenchJson(one.runs, 0.0, 1), BenchJson(two.runs, 0.0, 1));
+}
+
+// Every named pipeline on one run: each reports every field, the paper's five equal a default
+// run's figures bit for bit (same beams, same code), and the ones that map again (Kalman,
+// pre-filters) see the same scans.
+TEST(RunBench, EveryPipelineReportsEveryFieldAndThePaperFiveAreUnchanged) {
+    BenchOptions options;
+    options.courses = {4};
+    options.tests = {"T"};
+    options.sheets = false;
+    options.threads = 1;
+    const BenchResult paper = RunBench(options);
+    options.pipelines = AllPipelineNames();
+    const BenchResult all = RunBench(options);
+    ASSERT_EQ(all.runs.size(), 1U);
+    const BenchRun& run = all.runs[0];
+    EXPECT_EQ(run.unknown, "zero");
+    EXPECT_TRUE(run.scene.empty());
+    ASSERT_EQ(run.filters.size(), AllPipelineNames().size());
+    for (const std::string& name : AllPipelineNames()) {
+        ASSERT_EQ(run.filters.count(name), 1U) << name;
+        const FilterScore& f = run.filters.at(name);
+        EXPECT_TRUE(std::isfinite(f.pi)) << name;
+        EXPECT_GT(f.pi, 0.0) << name;
+        EXPECT_TRUE(std::isfinite(f.edge_rmse_m)) << name;
+        EXPECT_TRUE(std::isfinite(f.open_rmse_m)) << name;
+        EXPECT_EQ(f.coverage, 1.0) << name;  // 0-for-unknown maps: every region cell scored
+        EXPECT_EQ(f.cells, 200 * 80) << name;
+        ASSERT_EQ(run.poles_kept.count(name), 1U) << name;
+    }
+    EXPECT_EQ(run.filters.at("raw").pi, 1.0);  // Eq. 11's denominator is the raw map
+    EXPECT_NE(run.filters.at("kalman").rmse_m, run.filters.at("raw").rmse_m);
+    EXPECT_NE(run.filters.at("range_jump").rmse_m, run.filters.at("raw").rmse_m);
+    EXPECT_NE(run.filters.at("shadow").rmse_m, run.filters.at("raw").rmse_m);
+    for (const std::string& name : PaperPipelineNames()) {
+        const FilterScore& a = paper.runs[0].filters.at(name);
+        const FilterScore& b = run.filters.at(name);
+        EXPECT_EQ(a.pi, b.pi) << name;
+        EXPECT_EQ(a.rmse_m, b.rmse_m) << name;
+        EXPECT_EQ(a.spikes, b.spikes) << name;
+        EXPECT_EQ(paper.runs[0].poles_kept.at(name), run.poles_kept.at(name)) << name;
+    }
+    // bench.json: every pipeline under filters.<name> with every field, in registry order.
+    const std::string json = BenchJson(all.runs, 0.0, 1);
+    std::size_t at = 0;
+    for (const std::string& name : AllPipelineNames()) {
+        const std::size_t key = json.find("\"" + name + "\":{\"pi\":", at);
+        ASSERT_NE(key, std::string::npos) << name;
+        at = key;
+        const std::string entry = json.substr(key, json.find('}', key) - key);
+        for (const char* field :
+             {"\"rmse_m\"", "\"spikes\"", "\"fill_error_m\"", "\"coverage\"", "\"cells\"",
+              "\"rmse_edge_m\"", "\"rmse_open_m\"", "\"poles_kept\"", "\"poles\""}) {
+            EXPECT_NE(entry.find(field), std::string::npos) << name << " " << field;
+        }
+    }
+    const std::string md = PipelinesMarkdown(all.runs);
+    for (const std::string& name : AllPipelineNames()) {
+        EXPECT_NE(md.find("| " + name + " | "), std::string::npos) << name;
+    }
+    // The paper's PI table keeps the paper's five columns only.
+    EXPECT_EQ(PiTable(all.runs), PiTable(paper.runs));
+}
+
+// A terrain scene through BenchOptions::scenes: unknown cells NaN, the truth keeps heights
+// below the datum, RMSEs over observed cells, poles of the scene counted.
+TEST(RunBench, TerrainSceneRunsWithNanUnknownCells) {
+    const std::filesystem::path scene =
+        std::filesystem::path(testing::TempDir()) / "casmap_bench_slope.yaml";
+    std::ofstream(scene) << "objects:\n"
+                            "  - name: slope\n"
+                            "    box: {size_m: [8, 4, 0.2]}\n"
+                            "    pose: {xyz_m: [3.5, 0, -0.16], rpy_deg: [0, 2, 0]}\n"
+                            "    reflectivity: 0.3\n"
+                            "    terrain: true\n"
+                            "  - name: rock\n"
+                            "    box: {size_m: [0.3, 0.3, 0.2]}\n"
+                            "    pose: {xyz_m: [3, 0.3, 0.0], rpy_deg: [0, 0, 0]}\n"
+                            "    reflectivity: 0.5\n"
+                            "  - name: pole1\n"
+                            "    cylinder: {radius_m: 0.012, height_m: 0.914}\n"
+                            "    pose: {xyz_m: [4.0125, -0.5125, 0.4], rpy_deg: [0, 0, 0]}\n"
+                            "    reflectivity: 0.45\n";
+    BenchOptions options;
+    options.courses = {};
+    options.scenes = {scene.string()};
+    options.scene_motions = {"T"};
+    options.pipelines = {"cas", "raw", "cas_terrain", "kalman", "range_jump_median"};
+    options.sheets = true;
+    options.threads = 2;
+    const BenchResult result = RunBench(options);
+    ASSERT_EQ(result.runs.size(), 1U);
+    const BenchRun& run = result.runs[0];
+    EXPECT_EQ(result.run_names[0], "casmap_bench_slope_T");
+    EXPECT_EQ(run.scene, scene.string());
+    EXPECT_EQ(run.course, 0);
+    EXPECT_EQ(run.unknown, "nan");
+    EXPECT_EQ(run.poles, (std::vector<std::string>{"pole1"}));
+    EXPECT_NE(result.run_configs[0].find("unknown: nan"), std::string::npos);
+    // Truth below the datum kept; raw map NaN where never observed.
+    const SheetMaps& maps = result.sheets[0];
+    const float lowest = *std::min_element(maps.truth.data.begin(), maps.truth.data.end());
+    EXPECT_LT(lowest, -0.05F);
+    std::size_t unknown = 0;
+    for (std::size_t i = 0; i < maps.raw.data.size(); ++i) {
+        if (maps.certainty.data[i] == 0.0F) {
+            EXPECT_TRUE(std::isnan(maps.raw.data[i])) << i;
+            ++unknown;
+        }
+    }
+    EXPECT_GT(unknown, 0U);
+    const FilterScore& raw = run.filters.at("raw");
+    EXPECT_EQ(raw.coverage, 1.0);
+    EXPECT_LT(raw.cells, 200 * 80);  // observed cells only
+    EXPECT_GT(raw.cells, 1000);
+    EXPECT_TRUE(std::isfinite(raw.rmse_m));
+    EXPECT_LT(raw.rmse_m, 0.1);  // the slope is mapped at its height, not pulled to 0
+    for (const std::string& name : options.pipelines) {
+        const FilterScore& f = run.filters.at(name);
+        EXPECT_TRUE(std::isfinite(f.rmse_m)) << name;
+        EXPECT_GT(f.coverage, 0.5) << name;
+        EXPECT_LE(f.coverage, 1.0 + 1e-12) << name;
+    }
+    const std::string json = BenchJson(result.runs, 0.0, 1);
+    EXPECT_NE(json.find("\"scene\":"), std::string::npos);
+    EXPECT_NE(json.find("\"unknown\":\"nan\""), std::string::npos);
+    EXPECT_NE(PipelinesMarkdown(result.runs).find("Scene casmap_bench_slope_T"), std::string::npos);
+}
+
+TEST(BenchOptions, PipelinesScenesAndPresetsAreValidated) {
+    BenchOptions o;
+    o.pipelines = {"cas", "nope"};
+    EXPECT_EQ(ValidationError(o).field(), "pipelines");
+    o = BenchOptions{};
+    o.pipelines = {};
+    EXPECT_EQ(ValidationError(o).field(), "pipelines");
+    o = BenchOptions{};
+    o.scenes = {"/nonexistent/scene.yaml"};
+    EXPECT_EQ(ValidationError(o).field(), "scenes");
+    o = BenchOptions{};
+    o.courses = {};
+    EXPECT_EQ(ValidationError(o).field(), "courses");  // neither courses nor scenes
+    o = BenchOptions{};
+    o.preset = "no_such_preset";
+    EXPECT_EQ(ValidationError(o).field(), "preset");
+    o = BenchOptions{};
+    o.preset = "paper";
+    o.filter_settings = {"A=30"};
+    EXPECT_NO_THROW(o.Validate());
+    const std::vector<std::string> settings = o.EffectiveFilterSettings();
+    ASSERT_FALSE(settings.empty());
+    EXPECT_EQ(settings.back(), "A=30");  // --set after the preset
+}
+
+// The paper preset gives the defaults' effective parameters, byte for byte.
+TEST(BenchOptions, PaperPresetEqualsTheDefaults) {
+    BenchOptions o;
+    o.preset = "paper";
+    mapper::FilterParams with;
+    for (const std::string& s : o.EffectiveFilterSettings()) {
+        with.SetAssignment(s);
+    }
+    EXPECT_EQ(FilterParamsYaml(with), FilterParamsYaml(mapper::FilterParams{}));
 }
 
 }  // namespace

@@ -27,6 +27,9 @@ TEST(BenchWire, RoundTripIsExactNanIncluded) {
     a.run.seed = 0xFFFFFFFFFFFFFFFFULL;
     a.run.filters["cas"] = {0.123456789012345678, 0.01, 3, std::nan("")};
     a.run.filters["median"] = {1.5, 0.02, 0, 0.004};
+    a.run.filters["kalman"] = {0.9, 0.03, 2, 0.005, 15000, 0.75, std::nan(""), 0.011};
+    a.run.scene = "scenes/outdoor.yaml";
+    a.run.unknown = "nan";
     a.run.cas_classes.all = {16000, 1.25, 2.5, 96.25};
     a.run.cas_classes.observed = {15000, 1.3, 2.6, 96.1};
     a.run.raw_rmse_m = 0.0314;
@@ -50,6 +53,13 @@ TEST(BenchWire, RoundTripIsExactNanIncluded) {
     EXPECT_EQ(std::bit_cast<std::uint64_t>(b.run.filters.at("cas").pi),
               std::bit_cast<std::uint64_t>(a.run.filters.at("cas").pi));
     EXPECT_TRUE(std::isnan(b.run.filters.at("cas").fill_error_m));
+    const FilterScore& k = b.run.filters.at("kalman");
+    EXPECT_EQ(k.cells, 15000);
+    EXPECT_EQ(k.coverage, 0.75);
+    EXPECT_TRUE(std::isnan(k.edge_rmse_m));
+    EXPECT_EQ(k.open_rmse_m, 0.011);
+    EXPECT_EQ(b.run.scene, "scenes/outdoor.yaml");
+    EXPECT_EQ(b.run.unknown, "nan");
     EXPECT_EQ(b.run.poles_kept.at("raw"), a.run.poles_kept.at("raw"));
     EXPECT_EQ(b.config_yaml, a.config_yaml);
     ASSERT_TRUE(b.has_sheet);
