@@ -183,6 +183,20 @@ TEST(BenchCommand, PipelinesAndPresetsFromTheCommandLine) {
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(RunsPart(ReadText(dir / "b" / "bench.json")),
               RunsPart(ReadText(dir / "c" / "bench.json")));
+
+    // The outdoor scene on the vehicle through --scenes: NaN unknown, RMSE on observed cells.
+    r = Casmap("bench --scenes " + std::string(CASMAP_SOURCE_DIR) +
+               "/scenes/outdoor.yaml --pipelines raw,cas_trail --threads 2 --out " +
+               (dir / "d").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("## Scene outdoor_vehicle"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "d" / "runs" / "outdoor_vehicle.yaml"));
+    EXPECT_TRUE(fs::exists(dir / "d" / "sheets" / "outdoor_vehicle.png"));
+    const std::string terrain = ReadText(dir / "d" / "bench.json");
+    EXPECT_NE(terrain.find("\"course\":0,\"test\":\"vehicle\",\"scene\":"), std::string::npos)
+        << terrain;
+    EXPECT_NE(terrain.find("\"unknown\":\"nan\""), std::string::npos);
+    EXPECT_EQ(terrain.find("course04"), std::string::npos);  // no courses without --courses
 }
 
 TEST(BenchCommand, KilledBenchLeavesNoHalfWrittenJson) {
