@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <set>
 
@@ -142,6 +143,12 @@ void CheckAxisValue(const SweepOptions& opt, const std::string& name, double v) 
     }
 }
 
+double Snap(double v) {
+    char buf[40];
+    std::snprintf(buf, sizeof(buf), "%.12g", v);
+    return std::stod(buf);
+}
+
 bool AxisValueAllowed(const SweepOptions& opt, const std::string& name, double value) {
     try {
         CheckAxisValue(opt, name, value);
@@ -201,7 +208,7 @@ SweepAxis ParseSweepAxis(const std::string& assignment, const std::string& field
         throw MakeInputError("", field, assignment, "more than 10000 values");
     }
     for (int i = 0; i < static_cast<int>(count); ++i) {
-        axis.values.push_back(from + i * step);
+        axis.values.push_back(detail::Snap(from + i * step));  // 0.09, not 0.09000000000000001
     }
     return axis;
 }

@@ -35,6 +35,9 @@ namespace casmap::pipeline::detail {
 /// sweep's filter and fixed settings (used by Validate and by grid growth).
 void CheckAxisValue(const SweepOptions& opt, const std::string& name, double value);
 
+/// `v` rounded to 12 significant digits: axis values without binary noise (FROM + i STEP).
+[[nodiscard]] double Snap(double v);
+
 /// True when CheckAxisValue accepts the value.
 [[nodiscard]] bool AxisValueAllowed(const SweepOptions& opt, const std::string& name, double value);
 

@@ -333,13 +333,6 @@ std::vector<std::size_t> ParetoFront(const std::vector<SweepPoint>& points) {
     return front;
 }
 
-/// A value one step beyond an edge, rounded to 12 significant digits (no 0.30000000000000004).
-double Snap(double v) {
-    char buf[40];
-    std::snprintf(buf, sizeof(buf), "%.12g", v);
-    return std::stod(buf);
-}
-
 /// Extends every axis whose edge holds the best point (when the value beyond is allowed and
 /// the grid stays <= 10000 points); returns the growth records (empty: nothing grew).
 std::vector<SweepGrowth> Grow(SweepOptions& opt, const SweepPoint& best, int round) {
@@ -353,14 +346,14 @@ std::vector<SweepGrowth> Grow(SweepOptions& opt, const SweepPoint& best, int rou
         const double v = best.values[i];
         std::optional<double> added;
         if (v == axis.values.front()) {
-            const double next = Snap(axis.values[0] - (axis.values[1] - axis.values[0]));
+            const double next = detail::Snap(axis.values[0] - (axis.values[1] - axis.values[0]));
             if (detail::AxisValueAllowed(opt, axis.name, next)) {
                 axis.values.insert(axis.values.begin(), next);
                 added = next;
             }
         } else if (v == axis.values.back()) {
             const double next =
-                Snap(axis.values[n - 1] + (axis.values[n - 1] - axis.values[n - 2]));
+                detail::Snap(axis.values[n - 1] + (axis.values[n - 1] - axis.values[n - 2]));
             if (detail::AxisValueAllowed(opt, axis.name, next)) {
                 axis.values.push_back(next);
                 added = next;
@@ -445,8 +438,8 @@ SweepResult RunSweep(const SweepOptions& options, const core::ProgressFn& progre
     options.Validate();  // every point and speed, before simulating anything
     const DistributedSession local = DistributedSession::Local();
     Context cx(options);
-    cx.settings = ResolveBenchSettings(options.courses_dir, options.rig_path,
-                                       options.sensor_path, options.seed);
+    cx.settings = ResolveBenchSettings(options.courses_dir, options.rig_path, options.sensor_path,
+                                       options.seed);
     cx.session = options.session != nullptr ? options.session : &local;
     cx.tests = SortedTests(options.tests);
     cx.seeds = options.TrainSeeds();

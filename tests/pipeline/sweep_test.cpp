@@ -29,6 +29,9 @@ TEST(ParseSweepAxis, ExpandsFromToStep) {
     EXPECT_EQ(a.values, (std::vector<double>{6.0, 9.0, 12.0}));
     // A step that does not divide the range stops at or below TO.
     EXPECT_EQ(ParseSweepAxis("B=0.02:0.05:0.02", "axes").values.size(), 2U);
+    // Values carry no binary noise: 0.07 + 2 x 0.02 is written 0.11, not 0.11000000000000001.
+    EXPECT_EQ(ParseSweepAxis("B=0.07:0.11:0.02", "axes").values,
+              (std::vector<double>{0.07, 0.09, 0.11}));
 }
 
 TEST(ParseSweepAxis, RejectsNamingTheCallersField) {
