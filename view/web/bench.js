@@ -11,7 +11,15 @@ cm.benchFilters = (runs) => {
 };
 const kFilterLabels = { cas: 'CAS', wiener: 'Wiener', average: 'Averaging', median: 'Median', cwm: 'CWM' };
 
-cm.runName = (run) => `course${String(run.course).padStart(2, '0')}_${run.test}`;
+// As pipeline::BenchRunName: courseNN_TEST, or <scene stem>_<motion> for --scenes runs
+// (<folder>_scene for a dataset sample's NNNNNN/scene.yaml).
+cm.runName = (run) => {
+  if (!run.scene) return `course${String(run.course).padStart(2, '0')}_${run.test}`;
+  const parts = run.scene.split('/');
+  let stem = parts[parts.length - 1].replace(/\.[^.]*$/, '');
+  if (stem === 'scene' && parts.length > 1) stem = parts[parts.length - 2] + '_' + stem;
+  return `${stem}_${run.test}`;
+};
 
 // The filter with the lowest PI in a run (Eq. 11: lower is better).
 cm.bestFilter = (run) => {
@@ -74,7 +82,8 @@ cm.showBench = async (main) => {
   })));
 
   for (const [file, title, id] of [['table2.md', 'Table II: CAS pixel classes', 'table2'],
-    ['poles.md', 'Poles kept', 'poles']]) {
+    ['poles.md', 'Poles kept', 'poles'],
+    ['pipelines.md', 'Named pipelines side by side', 'pipelines']]) {
     const s = cm.section(title, id);
     try {
       s.append(cm.markdown(await cm.text(cm.files(file))));
