@@ -1,9 +1,11 @@
 #include "casmap/pipeline/bench_maps.hpp"
 
 #include <string>
+#include <vector>
 
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/image.hpp"
+#include "casmap/pipeline/bench_pipelines.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -31,11 +33,14 @@ void WriteBenchMaps(const std::filesystem::path& dir,
     };
     add("raw", maps.raw, "raw h", "elevation", "m");
     add("truth", maps.truth, "truth", "elevation", "m");
-    for (const std::string& name : BenchFilterNames()) {
-        const auto it = maps.filtered.find(name);
-        if (it != maps.filtered.end()) {
-            add(name, it->second, FilterDisplayName(name), "elevation", "m");
+    std::vector<std::string> names;
+    for (const auto& [name, map] : maps.filtered) {
+        if (name != "raw") {  // pipeline "raw" is the raw map itself, written above
+            names.push_back(name);
         }
+    }
+    for (const std::string& name : InPipelineOrder(names)) {  // the paper's five first
+        add(name, maps.filtered.at(name), FilterDisplayName(name), "elevation", "m");
     }
     add("certainty", maps.certainty, "certainty", "certainty", "");
     if (maps.cas_classes.rows > 0) {

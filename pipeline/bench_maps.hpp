@@ -2,7 +2,8 @@
 
 // The maps of one benchmark run as float TIFFs plus a maps.json index, for `casmap bench
 // --maps` and the interactive run view of `casmap view`:
-//   DIR/raw.tif  certainty.tif  truth.tif  <filter>.tif (BenchFilterNames())  cas_classes.tif
+//   DIR/raw.tif  certainty.tif  truth.tif  cas_classes.tif
+//   DIR/<pipeline>.tif: every pipeline scored but raw (the paper's five first)
 //   DIR/maps.json  {"grid": {x0_m, y0_m, cell_m, rows, cols}, "layers": [{name, label, kind,
 //                  unit, file}]}   kind: elevation | certainty | classes
 // cas_classes.tif holds mapper::PixelClass values (0 untouched, 1 removed, 2 filled, 3 border)

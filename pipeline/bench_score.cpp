@@ -86,11 +86,6 @@ std::vector<std::string> KeptPoles(const core::MapF& map, const std::vector<Pole
     return kept;
 }
 
-bool IsPaperFilter(const std::string& name) {
-    const std::vector<std::string>& paper = BenchFilterNames();
-    return std::find(paper.begin(), paper.end(), name) != paper.end();
-}
-
 }  // namespace
 
 BenchRun ScorePipelines(const MappedBenchRun& run,
@@ -167,7 +162,7 @@ BenchRun ScorePipelines(const MappedBenchRun& run,
         score.edge_rmse_m = m.edge_rmse_m;
         score.open_rmse_m = m.open_rmse_m;
         out.poles_kept[name] = KeptPoles(result.elevation, poles);
-        if (sheet != nullptr && IsPaperFilter(name)) {
+        if (sheet != nullptr) {  // the Fig. 7 sheet draws the paper's five; --maps writes all
             sheet->filtered[name] = std::move(result.elevation);
         }
     }

@@ -41,7 +41,8 @@ std::string FilterDisplayName(const std::string& name) {
     if (name == "wiener") return "Wiener";
     if (name == "average") return "Averaging";
     if (name == "median") return "Median";
-    return "CWM";
+    if (name == "cwm") return "CWM";
+    return name;  // other pipelines go by their registry name
 }
 
 const std::vector<std::string>& BenchFilterNames() {

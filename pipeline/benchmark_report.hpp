@@ -59,11 +59,12 @@ struct SheetMaps {
     core::MapF raw;
     core::MapF certainty;
     core::MapF truth;
-    std::map<std::string, core::MapF> filtered;  // keyed by BenchFilterNames()
+    std::map<std::string, core::MapF> filtered;  // keyed by pipeline name (every pipeline scored)
     core::Raster<std::uint8_t> cas_classes;      // mapper::PixelClass per cell
 };
 
-/// "CAS", "Wiener", "Averaging", "Median", "CWM" for the names above.
+/// "CAS", "Wiener", "Averaging", "Median", "CWM" for the names above; any other pipeline's
+/// name unchanged.
 [[nodiscard]] std::string FilterDisplayName(const std::string& name);
 
 /// JSON number (shortest round-trip form) or null for NaN/inf.

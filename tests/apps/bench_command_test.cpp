@@ -160,12 +160,17 @@ TEST(BenchCommand, PipelinesAndPresetsFromTheCommandLine) {
     std::ofstream(dir / "trial.yaml") << "description: test\nset:\n  A: 45\n  h_sum_min: 10\n";
     Result r = Casmap(
         "bench --courses 4 --tests T --no-sheets --threads 2 --pipelines "
-        "raw,kalman,cas,range_jump_cas --preset " +
+        "raw,kalman,cas,range_jump_cas --maps --preset " +
         (dir / "trial.yaml").string() + " --set h_sum_min=9 --out " + (dir / "a").string());
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("# Pipelines side by side"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("| kalman |"), std::string::npos) << r.output;
     EXPECT_TRUE(fs::exists(dir / "a" / "pipelines.md"));
+    // --maps writes every pipeline's map for casmap view (raw once).
+    for (const char* f : {"raw.tif", "kalman.tif", "cas.tif", "range_jump_cas.tif", "maps.json"}) {
+        EXPECT_TRUE(fs::exists(dir / "a" / "runs" / "course04_T" / f)) << f;
+    }
+    EXPECT_FALSE(fs::exists(dir / "a" / "runs" / "course04_T" / "median.tif"));
     const std::string yaml = ReadText(dir / "a" / "runs" / "course04_T.yaml");
     EXPECT_NE(yaml.find("A: 45"), std::string::npos) << yaml;
     EXPECT_NE(yaml.find("h_sum_min: 9"), std::string::npos) << yaml;
