@@ -3,6 +3,7 @@
 // determinism across thread counts and the bad-input contract.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -39,7 +40,9 @@ std::string ReadText(const fs::path& path) {
 }
 
 fs::path FreshDir(const std::string& name) {
-    const fs::path dir = fs::path(testing::TempDir()) / ("casmap_bench_cmd_" + name);
+    // The pid keeps concurrent ctest runs (several worktrees on one machine) apart.
+    const fs::path dir = fs::path(testing::TempDir()) /
+                         ("casmap_bench_cmd_" + name + "_" + std::to_string(getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
