@@ -58,4 +58,19 @@ std::optional<std::vector<double>> ParseNumberList(std::string_view text, std::s
     return out;
 }
 
+std::string FormatNumber(double value) {
+    if (std::isnan(value)) {
+        return ".nan";
+    }
+    if (std::isinf(value)) {
+        return value > 0 ? ".inf" : "-.inf";
+    }
+    if (value == 0.0) {
+        return "0";  // also for -0: one spelling for zero
+    }
+    char buffer[32];  // the longest shortest double ("-2.2250738585072014e-308") is 24
+    const auto [end, error] = std::to_chars(buffer, buffer + sizeof(buffer), value);
+    return error == std::errc() ? std::string(buffer, end) : std::string(".nan");
+}
+
 }  // namespace casmap::core

@@ -1,7 +1,9 @@
 #pragma once
 
-// The one comma-list parser of casmap: every "A,B,C" value (grids, poses, vectors, course and
-// test lists) is split and its numbers read here, so they all accept the same spellings.
+// The one comma-list parser and the one number formatter of casmap: every "A,B,C" value (grids,
+// poses, vectors, course and test lists) is split and its numbers read here, and every number
+// written as text (YAML configs, scene files, messages) is formatted here, so they all accept
+// and produce the same spellings.
 
 #include <optional>
 #include <string>
@@ -23,5 +25,9 @@ namespace casmap::core {
 /// A comma list of exactly `count` finite numbers; nullopt otherwise (a trailing comma too).
 [[nodiscard]] std::optional<std::vector<double>> ParseNumberList(std::string_view text,
                                                                  std::size_t count);
+
+/// The shortest text that reads back to exactly `value` (std::to_chars, e.g. "0.1", "1e-05",
+/// "1000"); "0" for -0; YAML's ".nan", ".inf", "-.inf" for the non-finite values.
+[[nodiscard]] std::string FormatNumber(double value);
 
 }  // namespace casmap::core

@@ -2,13 +2,14 @@
 
 #include <set>
 
+#include "casmap/io/yaml_emit.hpp"
 #include "casmap/io/yaml_util.hpp"
 #include "casmap/scenegen/scene_writer.hpp"
 
 namespace casmap::io {
 namespace {
 
-using scenegen::FormatNumber;
+using core::FormatNumber;
 using scenegen::Range;
 using scenegen::RangeField;
 
@@ -207,22 +208,23 @@ void ReadTop(const std::string& file, const YAML::Node& root, scenegen::DatasetS
     }
 }
 
-std::string RangesYaml(std::vector<RangeField> ranges) {
-    std::string y;
+void EmitRanges(YAML::Emitter& out, const std::vector<RangeField>& ranges) {
     for (const RangeField& f : ranges) {
-        y += "  " + std::string(f.key) + ": [" + FormatNumber(f.range->min) + ", " +
-             FormatNumber(f.range->max) + "]\n";
+        out << YAML::Key << f.key << YAML::Value << YAML::Flow << YAML::BeginSeq
+            << FormatNumber(f.range->min) << FormatNumber(f.range->max) << YAML::EndSeq;
     }
-    return y;
 }
 
 template <std::size_t N>
-std::string WeightsYaml(const std::array<const char*, N>& names, const std::array<double, N>& w) {
-    std::string y = "{";
+void EmitWeights(YAML::Emitter& out,
+                 const char* key,
+                 const std::array<const char*, N>& names,
+                 const std::array<double, N>& w) {
+    out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginMap;
     for (std::size_t i = 0; i < N; ++i) {
-        y += std::string(i == 0 ? "" : ", ") + names[i] + ": " + FormatNumber(w[i]);
+        EmitNumber(out, names[i], w[i]);
     }
-    return y + "}";
+    out << YAML::EndMap;
 }
 
 }  // namespace
@@ -244,47 +246,61 @@ scenegen::DatasetSpec LoadDatasetSpec(const std::string& path) {
     return spec;
 }
 
-std::string DatasetSpecToYaml(const scenegen::DatasetSpec& spec_in) {
+void EmitDatasetSpec(YAML::Emitter& out, const scenegen::DatasetSpec& spec_in) {
     scenegen::DatasetSpec spec = spec_in;  // Ranges() needs a mutable object
-    std::string y = "name: \"" + spec.name + "\"\n";
-    y += "count: " + std::to_string(spec.count) + "\n";
-    y += "seed: " + std::to_string(spec.seed) + "\n";
-    y += "splits: {train: " + FormatNumber(spec.train_fraction) +
-         ", val: " + FormatNumber(spec.val_fraction) + "}\n";
-    y += "region: {start_x_m: " + FormatNumber(spec.region_start_x_m) +
-         ", length_m: " + FormatNumber(spec.region_length_m) +
-         ", width_m: " + FormatNumber(spec.region_width_m) +
-         ", cell_m: " + FormatNumber(spec.cell_m) + "}\n";
+    out << YAML::Key << "name" << YAML::Value << YAML::DoubleQuoted << spec.name;
+    out << YAML::Key << "count" << YAML::Value << spec.count;
+    out << YAML::Key << "seed" << YAML::Value << spec.seed;
+    out << YAML::Key << "splits" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    EmitNumber(out, "train", spec.train_fraction);
+    EmitNumber(out, "val", spec.val_fraction);
+    out << YAML::EndMap;
+    out << YAML::Key << "region" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    EmitNumber(out, "start_x_m", spec.region_start_x_m);
+    EmitNumber(out, "length_m", spec.region_length_m);
+    EmitNumber(out, "width_m", spec.region_width_m);
+    EmitNumber(out, "cell_m", spec.cell_m);
+    out << YAML::EndMap;
     const scenegen::SceneGenConfig& s = spec.scene;
-    y += "scene:\n";
-    y += "  terrain_probability: " + FormatNumber(s.terrain_probability) + "\n";
-    y += "  ground_cell_m: " + FormatNumber(s.ground_cell_m) + "\n";
-    y += "  noise_octaves: " + std::to_string(s.noise_octaves) + "\n";
-    y += "  max_slope_deg: " + FormatNumber(s.max_slope_deg) + "\n";
-    y += "  kind_weights: " + WeightsYaml(kKindNames, s.kind_weights) + "\n";
-    y += "  terrain_rock_weight_factor: " + FormatNumber(s.terrain_rock_weight_factor) + "\n";
-    y += "  min_gap_m: " + FormatNumber(s.min_gap_m) + "\n";
-    y += "  p_dark: " + FormatNumber(s.p_dark) + "\n";
-    y += "  p_bright: " + FormatNumber(s.p_bright) + "\n";
-    y += RangesYaml(spec.scene.Ranges());
+    out << YAML::Key << "scene" << YAML::Value << YAML::BeginMap;
+    EmitNumber(out, "terrain_probability", s.terrain_probability);
+    EmitNumber(out, "ground_cell_m", s.ground_cell_m);
+    out << YAML::Key << "noise_octaves" << YAML::Value << s.noise_octaves;
+    EmitNumber(out, "max_slope_deg", s.max_slope_deg);
+    EmitWeights(out, "kind_weights", kKindNames, s.kind_weights);
+    EmitNumber(out, "terrain_rock_weight_factor", s.terrain_rock_weight_factor);
+    EmitNumber(out, "min_gap_m", s.min_gap_m);
+    EmitNumber(out, "p_dark", s.p_dark);
+    EmitNumber(out, "p_bright", s.p_bright);
+    EmitRanges(out, spec.scene.Ranges());
+    out << YAML::EndMap;
     const scenegen::DomainConfig& d = spec.domain;
-    y += "domain:\n";
-    y += "  motion_weights: " + WeightsYaml(scenegen::kMotionNames, d.motion_weights) + "\n";
-    y += "  angular_resolutions_deg: [";
-    for (std::size_t i = 0; i < d.angular_resolutions_deg.size(); ++i) {
-        y += (i == 0 ? "" : ", ") + FormatNumber(d.angular_resolutions_deg[i]);
+    out << YAML::Key << "domain" << YAML::Value << YAML::BeginMap;
+    EmitWeights(out, "motion_weights", scenegen::kMotionNames, d.motion_weights);
+    out << YAML::Key << "angular_resolutions_deg" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (const double r : d.angular_resolutions_deg) {
+        out << FormatNumber(r);
     }
-    y += "]\n  range_modes: [";
-    for (std::size_t i = 0; i < d.range_modes.size(); ++i) {
-        y += (i == 0 ? "" : ", ") + d.range_modes[i];
-    }
-    y += "]\n  pose_error_probability: " + FormatNumber(d.pose_error_probability) + "\n";
-    y += "  triangle_probability: " + FormatNumber(d.triangle_probability) + "\n";
-    y += RangesYaml(spec.domain.Ranges());
-    y += "outputs: {filtered: " + std::string(spec.outputs.filtered ? "true" : "false") +
-         ", cas_classes: " + (spec.outputs.cas_classes ? "true" : "false") +
-         ", pose_decimation: " + std::to_string(spec.outputs.pose_decimation) + "}\n";
-    return y;
+    out << YAML::EndSeq;
+    out << YAML::Key << "range_modes" << YAML::Value << YAML::Flow << d.range_modes;
+    EmitNumber(out, "pose_error_probability", d.pose_error_probability);
+    EmitNumber(out, "triangle_probability", d.triangle_probability);
+    EmitRanges(out, spec.domain.Ranges());
+    out << YAML::EndMap;
+    out << YAML::Key << "outputs" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "filtered" << YAML::Value << (spec.outputs.filtered ? "true" : "false");
+    out << YAML::Key << "cas_classes" << YAML::Value
+        << (spec.outputs.cas_classes ? "true" : "false");
+    out << YAML::Key << "pose_decimation" << YAML::Value << spec.outputs.pose_decimation;
+    out << YAML::EndMap;
+}
+
+std::string DatasetSpecToYaml(const scenegen::DatasetSpec& spec) {
+    YAML::Emitter out;
+    out << YAML::BeginMap;
+    EmitDatasetSpec(out, spec);
+    out << YAML::EndMap;
+    return EmittedText(out);
 }
 
 }  // namespace casmap::io

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/io/yaml_emit.hpp"
 #include "casmap/io/yaml_util.hpp"
 
 namespace casmap::io {
@@ -217,52 +218,36 @@ private:
     std::map<std::string, std::string> where_;
 };
 
-/// Writes the same keys as YAML text, numbers in their shortest exact form.
+/// Emits the same keys with yaml-cpp's emitter, numbers through core::FormatNumber.
 class Writer {
 public:
+    explicit Writer(YAML::Emitter& out) : out_(out) {}
+
     void Section(const char* key, const std::function<void()>& body) {
-        Line(key, "");
-        indent_ += 2;
+        out_ << YAML::Key << key << YAML::Value << YAML::BeginMap;
         body();
-        indent_ -= 2;
+        out_ << YAML::EndMap;
     }
-    void Number(const char* key, double& v) { Line(key, Format(v)); }
-    void Int(const char* key, int& v) { Line(key, std::to_string(v)); }
-    void Bool(const char* key, bool& v) { Line(key, v ? "true" : "false"); }
-    void Seed(const char* key, std::uint64_t& v) { Line(key, std::to_string(v)); }
+    void Number(const char* key, double& v) { EmitNumber(out_, key, v); }
+    void Int(const char* key, int& v) { out_ << YAML::Key << key << YAML::Value << v; }
+    void Bool(const char* key, bool& v) {
+        out_ << YAML::Key << key << YAML::Value << (v ? "true" : "false");
+    }
+    void Seed(const char* key, std::uint64_t& v) { out_ << YAML::Key << key << YAML::Value << v; }
     template <int N>
     void Vector(const char* key, Eigen::Matrix<double, N, 1>& v) {
-        std::string text = "[";
+        out_ << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
         for (int i = 0; i < N; ++i) {
-            text += (i == 0 ? "" : ", ") + Format(v[i]);
+            out_ << core::FormatNumber(v[i]);
         }
-        Line(key, text + "]");
+        out_ << YAML::EndSeq;
     }
-    void Shape(const char* key, ProfileShape& v) { Line(key, rig::ProfileShapeName(v)); }
-    [[nodiscard]] const std::string& text() const { return text_; }
+    void Shape(const char* key, ProfileShape& v) {
+        out_ << YAML::Key << key << YAML::Value << std::string(rig::ProfileShapeName(v));
+    }
 
 private:
-    // Shortest text that reads back exactly; plain notation for everyday magnitudes.
-    static std::string Format(double v) {
-        const double mag = std::abs(v);
-        const bool plain = mag == 0.0 || (mag >= 1e-4 && mag < 1e12);
-        char buffer[40];
-        for (int precision = 1; precision <= 17; ++precision) {
-            std::snprintf(buffer, sizeof buffer, "%.*g", precision, v);
-            const bool exponent = std::string(buffer).find('e') != std::string::npos;
-            if (std::stod(buffer) == v && !(plain && exponent)) {
-                break;
-            }
-        }
-        return buffer;
-    }
-    void Line(const char* key, const std::string& value) {
-        text_ += std::string(static_cast<std::size_t>(indent_), ' ') + key + ":" +
-                 (value.empty() ? "" : " " + value) + "\n";
-    }
-
-    std::string text_;
-    int indent_ = 0;
+    YAML::Emitter& out_;
 };
 
 }  // namespace
@@ -289,11 +274,18 @@ RigConfig LoadRigConfig(const std::string& path) {
     return config;
 }
 
-std::string RigConfigToYaml(const RigConfig& config) {
-    RigConfig copy = config;
-    Writer writer;
+void EmitRigConfig(YAML::Emitter& out, const RigConfig& config) {
+    RigConfig copy = config;  // the visitor is shared with the reader, which writes
+    Writer writer(out);
     VisitRig(writer, copy);
-    return writer.text();
+}
+
+std::string RigConfigToYaml(const RigConfig& config) {
+    YAML::Emitter out;
+    out << YAML::BeginMap;
+    EmitRigConfig(out, config);
+    out << YAML::EndMap;
+    return EmittedText(out);
 }
 
 }  // namespace casmap::io

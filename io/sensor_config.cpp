@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/io/yaml_emit.hpp"
 #include "casmap/io/yaml_util.hpp"
 
 namespace casmap::io {
@@ -94,18 +95,6 @@ const Field* FindField(std::string_view key) {
         }
     }
     return nullptr;
-}
-
-std::string Number(double v) {
-    if (std::isnan(v)) {
-        return ".nan";
-    }
-    if (std::isinf(v)) {
-        return v > 0 ? ".inf" : "-.inf";
-    }
-    char buffer[64];
-    const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof(buffer), v);  // shortest exact
-    return ec == std::errc() ? std::string(buffer, ptr) : std::string("0");
 }
 
 std::string Shown(const YAML::Node& node) {
@@ -224,39 +213,47 @@ sensor_models::Lms200Config LoadLms200Config(const std::string& path) {
     return c;
 }
 
-std::string Lms200ConfigToYaml(const sensor_models::Lms200Config& c) {
-    std::string y;
+void EmitLms200Config(YAML::Emitter& out, const sensor_models::Lms200Config& c) {
+    out << YAML::BeginMap;
     for (const Field& f : kFields) {
-        y += std::string(f.key) + ": ";
+        const std::string key(f.key);
+        out << YAML::Key << key << YAML::Value;
         if (const auto* d = std::get_if<double Lms200Config::*>(&f.target)) {
-            y += Number(c.*(*d));
+            out << core::FormatNumber(c.*(*d));
         } else if (const auto* i = std::get_if<int Lms200Config::*>(&f.target)) {
-            y += std::to_string(c.*(*i));
+            out << c.*(*i);
         } else if (const auto* b = std::get_if<bool Lms200Config::*>(&f.target)) {
-            y += c.*(*b) ? "true" : "false";
+            out << (c.*(*b) ? "true" : "false");
         } else {
             switch (std::get<Special>(f.target)) {
                 case Special::kRangeMode:
-                    y += c.format.mode == core::RangeMode::k8m    ? "8"
-                         : c.format.mode == core::RangeMode::k16m ? "16"
-                                                                  : "32";
+                    out << (c.format.mode == core::RangeMode::k8m    ? "8"
+                            : c.format.mode == core::RangeMode::k16m ? "16"
+                                                                     : "32");
                     break;
                 case Special::kRangeUnits:
-                    y += c.format.units == core::RangeUnits::kMillimetre ? "mm" : "cm";
+                    out << (c.format.units == core::RangeUnits::kMillimetre ? "mm" : "cm");
                     break;
                 case Special::kReturnAlgorithm:
-                    y += c.return_algorithm == ReturnAlgorithm::kWaveform ? "waveform" : "auto";
+                    out << (c.return_algorithm == ReturnAlgorithm::kWaveform ? "waveform" : "auto");
                     break;
                 case Special::kSunDirection:
-                    y += "[" + Number(c.sun_direction_world.x()) + ", " +
-                         Number(c.sun_direction_world.y()) + ", " +
-                         Number(c.sun_direction_world.z()) + "]";
+                    out << YAML::Flow << YAML::BeginSeq;
+                    for (int k = 0; k < 3; ++k) {
+                        out << core::FormatNumber(c.sun_direction_world[k]);
+                    }
+                    out << YAML::EndSeq;
                     break;
             }
         }
-        y += "\n";
     }
-    return y;
+    out << YAML::EndMap;
+}
+
+std::string Lms200ConfigToYaml(const sensor_models::Lms200Config& c) {
+    YAML::Emitter out;
+    EmitLms200Config(out, c);
+    return EmittedText(out);
 }
 
 void ApplyLms200ConfigOverrides(sensor_models::Lms200Config& config,

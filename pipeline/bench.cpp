@@ -9,6 +9,7 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
 #include "casmap/io/atomic_file.hpp"
+#include "casmap/io/yaml_emit.hpp"
 #include "casmap/pipeline/bench_maps.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
 #include "casmap/pipeline/bench_wire.hpp"
@@ -84,19 +85,36 @@ std::vector<std::string> BenchOptions::EffectiveFilterSettings() const {
 
 std::string FilterParamsYaml(const mapper::FilterParams& p) {
     const mapper::CasParams& c = p.cas;
-    return "filters:\n  cas: {k: " + std::to_string(c.k) + ", a: " + std::to_string(c.a) +
-           ", cell_m: " + FormatNumber(c.cell_m) + ", speed_m_s: " + FormatNumber(c.speed_m_s) +
-           ", scan_period_s: " + FormatNumber(c.scan_period_s) +
-           ", A: " + FormatNumber(c.EffectiveA()) + ", G: " + FormatNumber(c.EffectiveG()) +
-           ", gs_mode: " + (c.gs_mode == mapper::GsMode::kSum ? "sum" : "variance") +
-           ", h_sum_min: " + FormatNumber(c.h_sum_min) + ", B: " + FormatNumber(c.B) +
-           ", normalise: " + (c.normalise == mapper::Normalise::kWindow ? "window" : "global") +
-           ", e_term: " + OnOff(c.e_term) + ", E: " + FormatNumber(c.E) +
-           ", wm_empty: " + (c.wm_empty == mapper::WmEmpty::kInclude ? "include" : "skip") +
-           (c.unknown == mapper::Unknown::kNaN ? ", unknown: nan" : "") +
-           "}\n  baseline: {window: " + std::to_string(p.baseline.window) + ", noise: " +
-           (p.baseline.noise ? FormatNumber(*p.baseline.noise) : "mean_local_variance") +
-           ", center_weight: " + std::to_string(p.baseline.center_weight) + "}\n";
+    YAML::Emitter out;
+    out << YAML::BeginMap << YAML::Key << "filters" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "cas" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "k" << YAML::Value << c.k << YAML::Key << "a" << YAML::Value << c.a;
+    io::EmitNumber(out, "cell_m", c.cell_m);
+    io::EmitNumber(out, "speed_m_s", c.speed_m_s);
+    io::EmitNumber(out, "scan_period_s", c.scan_period_s);
+    io::EmitNumber(out, "A", c.EffectiveA());
+    io::EmitNumber(out, "G", c.EffectiveG());
+    out << YAML::Key << "gs_mode" << YAML::Value
+        << (c.gs_mode == mapper::GsMode::kSum ? "sum" : "variance");
+    io::EmitNumber(out, "h_sum_min", c.h_sum_min);
+    io::EmitNumber(out, "B", c.B);
+    out << YAML::Key << "normalise" << YAML::Value
+        << (c.normalise == mapper::Normalise::kWindow ? "window" : "global");
+    out << YAML::Key << "e_term" << YAML::Value << OnOff(c.e_term);
+    io::EmitNumber(out, "E", c.E);
+    out << YAML::Key << "wm_empty" << YAML::Value
+        << (c.wm_empty == mapper::WmEmpty::kInclude ? "include" : "skip");
+    if (c.unknown == mapper::Unknown::kNaN) {
+        out << YAML::Key << "unknown" << YAML::Value << "nan";
+    }
+    out << YAML::EndMap;
+    out << YAML::Key << "baseline" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "window" << YAML::Value << p.baseline.window;
+    out << YAML::Key << "noise" << YAML::Value
+        << (p.baseline.noise ? FormatNumber(*p.baseline.noise) : "mean_local_variance");
+    out << YAML::Key << "center_weight" << YAML::Value << p.baseline.center_weight;
+    out << YAML::EndMap << YAML::EndMap << YAML::EndMap;
+    return io::EmittedText(out);
 }
 
 BenchResult RunBench(const BenchOptions& options, const core::ProgressFn& progress) {

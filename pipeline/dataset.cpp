@@ -8,6 +8,7 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/dataset_spec_file.hpp"
+#include "casmap/io/yaml_emit.hpp"
 #include "casmap/pipeline/data_dir.hpp"
 #include "casmap/pipeline/dataset_card.hpp"
 #include "casmap/pipeline/sha256.hpp"
@@ -197,14 +198,19 @@ DatasetSummary WriteDatasetIndex(const scenegen::DatasetSpec& spec,
     }
     summary.generated -= std::min(summary.generated, summary.failed);
     io::WriteTextAtomically(out_dir / "manifest.jsonl", manifest);
-    std::string yaml = "# casmap dataset: the effective spec and the counts\n";
-    yaml += "casmap_version: " + std::string(CASMAP_VERSION) + "\n";
-    yaml += "counts: {samples: " + std::to_string(spec.count) +
-            ", ok: " + std::to_string(ok.size()) +
-            ", failed: " + std::to_string(spec.count - ok.size() - summary.pending) +
-            ", pending: " + std::to_string(summary.pending) + "}\n";
-    yaml += io::DatasetSpecToYaml(spec);
-    io::WriteTextAtomically(out_dir / "dataset.yaml", yaml);
+    YAML::Emitter yaml;
+    yaml << YAML::Comment("casmap dataset: the effective spec and the counts");
+    yaml << YAML::BeginMap;
+    yaml << YAML::Key << "casmap_version" << YAML::Value << std::string(CASMAP_VERSION);
+    yaml << YAML::Key << "counts" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    yaml << YAML::Key << "samples" << YAML::Value << spec.count;
+    yaml << YAML::Key << "ok" << YAML::Value << ok.size();
+    yaml << YAML::Key << "failed" << YAML::Value << spec.count - ok.size() - summary.pending;
+    yaml << YAML::Key << "pending" << YAML::Value << summary.pending;
+    yaml << YAML::EndMap;
+    io::EmitDatasetSpec(yaml, spec);
+    yaml << YAML::EndMap;
+    io::WriteTextAtomically(out_dir / "dataset.yaml", io::EmittedText(yaml));
     WriteDatasetCard(spec, out_dir, ok);
     return summary;
 }

@@ -11,6 +11,7 @@
 #include "casmap/drivers/lms200_driver.hpp"
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/run_file.hpp"
+#include "casmap/io/yaml_emit.hpp"
 #include "casmap/pipeline/map_run.hpp"
 
 namespace casmap::pipeline {
@@ -232,22 +233,34 @@ void Session::WriteSnapshots() const {
 
 std::string ConfigYaml(const LiveConfig& c, const std::string& source) {
     const mapper::ActiveWindowConfig& w = c.window;
-    std::string y = "# casmap live: the effective configuration\n";
-    y += "source: \"" + source + "\"\n";
-    y += "window: {rows: " + std::to_string(w.rows) + ", cols: " + std::to_string(w.cols) +
-         ", m: " + std::to_string(w.m) + ", cell_m: " + FormatNumber(w.cell_m) +
-         ", origin_x_m: " + FormatNumber(w.origin_x_m) +
-         ", origin_y_m: " + FormatNumber(w.origin_y_m) +
-         ", heading_step_rad: " + FormatNumber(w.heading_step_rad) + "}\n";
-    y += "mapper: {a: " + std::to_string(w.a) + ", delta_l_m: " + FormatNumber(w.delta_l_m) +
-         ", scan_period_s: " + FormatNumber(w.scan_period_s) + "}\n";
-    y += "cas: {k: " + std::to_string(w.cas.k) + ", speed_m_s: " + FormatNumber(w.cas.speed_m_s) +
-         ", A: " + FormatNumber(w.cas.EffectiveA()) + ", G: " + FormatNumber(w.cas.EffectiveG()) +
-         "}\n";
-    y += "obstacle_cell_m: " + FormatNumber(w.obstacle_cell_m) + "\n";
-    y += "pose_tolerance_s: " + FormatNumber(c.pose_tolerance_s) + "\n";
-    y += "pose_wait_s: " + FormatNumber(c.pose_wait_s) + "\n";
-    return y;
+    YAML::Emitter out;
+    out << YAML::Comment("casmap live: the effective configuration");
+    out << YAML::BeginMap;
+    out << YAML::Key << "source" << YAML::Value << YAML::DoubleQuoted << source;
+    out << YAML::Key << "window" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "rows" << YAML::Value << w.rows << YAML::Key << "cols" << YAML::Value
+        << w.cols << YAML::Key << "m" << YAML::Value << w.m;
+    io::EmitNumber(out, "cell_m", w.cell_m);
+    io::EmitNumber(out, "origin_x_m", w.origin_x_m);
+    io::EmitNumber(out, "origin_y_m", w.origin_y_m);
+    io::EmitNumber(out, "heading_step_rad", w.heading_step_rad);
+    out << YAML::EndMap;
+    out << YAML::Key << "mapper" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "a" << YAML::Value << w.a;
+    io::EmitNumber(out, "delta_l_m", w.delta_l_m);
+    io::EmitNumber(out, "scan_period_s", w.scan_period_s);
+    out << YAML::EndMap;
+    out << YAML::Key << "cas" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "k" << YAML::Value << w.cas.k;
+    io::EmitNumber(out, "speed_m_s", w.cas.speed_m_s);
+    io::EmitNumber(out, "A", w.cas.EffectiveA());
+    io::EmitNumber(out, "G", w.cas.EffectiveG());
+    out << YAML::EndMap;
+    io::EmitNumber(out, "obstacle_cell_m", w.obstacle_cell_m);
+    io::EmitNumber(out, "pose_tolerance_s", c.pose_tolerance_s);
+    io::EmitNumber(out, "pose_wait_s", c.pose_wait_s);
+    out << YAML::EndMap;
+    return io::EmittedText(out);
 }
 
 void Session::WriteFinal(const LiveStatus& status, LiveResult& result) const {

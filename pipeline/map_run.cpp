@@ -1,7 +1,6 @@
 #include "casmap/pipeline/map_run.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -10,6 +9,7 @@
 #include "casmap/core/lms200.hpp"
 #include "casmap/core/text.hpp"
 #include "casmap/io/image.hpp"
+#include "casmap/io/yaml_emit.hpp"
 #include "casmap/mapper/kalman_mapper.hpp"
 
 namespace casmap::pipeline {
@@ -225,22 +225,47 @@ void WriteMapFiles(const std::filesystem::path& dir,
     io::WriteMapPng(dir / (stem + ".png"), map, style);
 }
 
-std::string FormatNumber(double value) {
-    if (std::isnan(value)) {
-        return ".nan";
-    }
-    if (std::isinf(value)) {
-        return value > 0 ? ".inf" : "-.inf";
-    }
-    char buffer[64];
-    const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
-    return ec == std::errc() ? std::string(buffer, ptr) : std::string("0");
+std::string GridYaml(const core::GridGeometry& grid) {
+    YAML::Emitter out;
+    io::EmitGrid(out, grid);
+    return out.c_str();
 }
 
-std::string GridYaml(const core::GridGeometry& grid) {
-    return "{origin_x_m: " + FormatNumber(grid.x0_m) + ", origin_y_m: " + FormatNumber(grid.y0_m) +
-           ", cell_m: " + FormatNumber(grid.cell_m) + ", rows: " + std::to_string(grid.rows) +
-           ", cols: " + std::to_string(grid.cols) + "}";
+std::string MapConfigYaml(const std::string& run_path,
+                          std::optional<std::uint64_t> seed,
+                          const MappedRun& mapped) {
+    const mapper::MapperStats& s = mapped.stats;
+    YAML::Emitter out;
+    out << YAML::Comment("casmap map: the settings that produced the maps in this directory");
+    out << YAML::BeginMap;
+    out << YAML::Key << "run" << YAML::Value << run_path;
+    out << YAML::Key << "seed" << YAML::Value;
+    if (seed) {
+        out << *seed;
+    } else {
+        io::EmitNull(out);
+    }
+    out << YAML::Key << "grid" << YAML::Value;
+    io::EmitGrid(out, mapped.config.grid);
+    out << YAML::Key << "mapper" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "mode" << YAML::Value << std::string(ToString(mapped.settings.mode));
+    out << YAML::Key << "unknown" << YAML::Value
+        << std::string(mapper::ToString(mapped.settings.unknown));
+    out << YAML::Key << "prefilter" << YAML::Value
+        << std::string(ToString(mapped.settings.prefilter));
+    out << YAML::Key << "a" << YAML::Value << mapped.config.a;
+    io::EmitNumber(out, "delta_l_m", mapped.config.delta_l_m);
+    io::EmitNumber(out, "scan_period_s", mapped.config.scan_period_s);
+    out << YAML::EndMap;
+    out << YAML::Key << "stats" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "beams_seen" << YAML::Value << s.beams_seen;
+    out << YAML::Key << "beams_not_ok" << YAML::Value << s.beams_not_ok;
+    out << YAML::Key << "beams_no_pose" << YAML::Value << s.beams_no_pose;
+    out << YAML::Key << "beams_outside" << YAML::Value << s.beams_outside;
+    out << YAML::Key << "beams_rejected" << YAML::Value << s.beams_rejected;
+    out << YAML::Key << "beams_mapped" << YAML::Value << s.beams_mapped;
+    out << YAML::EndMap << YAML::EndMap;
+    return io::EmittedText(out);
 }
 
 }  // namespace casmap::pipeline

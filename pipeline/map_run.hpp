@@ -6,12 +6,14 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "casmap/core/grid.hpp"
 #include "casmap/core/scan.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/core/trajectory.hpp"
 #include "casmap/mapper/scan_filters.hpp"
 #include "casmap/mapper/terrain_mapper.hpp"
@@ -95,10 +97,17 @@ void WriteMapFiles(const std::filesystem::path& dir,
                    const std::string& unit,
                    const core::Raster<std::uint8_t>* unknown);
 
-/// Shortest text that reads back as the same double ("0.025", "1e-05", "nan").
-[[nodiscard]] std::string FormatNumber(double value);
+/// core::FormatNumber, the one number formatter ("0.025", "1e-05", ".nan").
+using core::FormatNumber;
 
-/// YAML block for a grid: "{origin_x_m: .., origin_y_m: .., cell_m: .., rows: .., cols: ..}".
+/// The settings that produced the maps of `run_path` (the file as given; `seed` null when the run
+/// has none) as YAML: run, seed, grid, mapper {mode, unknown, prefilter, a, delta_l_m,
+/// scan_period_s}, stats.
+[[nodiscard]] std::string MapConfigYaml(const std::string& run_path,
+                                        std::optional<std::uint64_t> seed,
+                                        const MappedRun& mapped);
+
+/// YAML flow map for a grid: "{origin_x_m: .., origin_y_m: .., cell_m: .., rows: .., cols: ..}".
 [[nodiscard]] std::string GridYaml(const core::GridGeometry& grid);
 
 }  // namespace casmap::pipeline

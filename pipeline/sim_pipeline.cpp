@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <sstream>
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
 #include "casmap/core/text.hpp"
 #include "casmap/io/rig_config.hpp"
 #include "casmap/io/sensor_config.hpp"
+#include "casmap/io/yaml_emit.hpp"
 #include "casmap/pipeline/map_run.hpp"
 #include "casmap/sensor_models/lms200_model.hpp"
 #include "casmap/sim/ground_truth.hpp"
@@ -71,18 +71,6 @@ void SetPoseError(rig::PoseErrorConfig& cfg, const std::string& assignment) {
                              "attitude_jitter_deg, seed");
     }
     cfg.enabled = true;
-}
-
-/// The sensor section: the file it came from and every key of config/lms200.yaml.
-std::string SensorYaml(const SimSetup& s) {
-    std::string y =
-        "sensor_file: " + (s.sensor_path.empty() ? std::string("null") : s.sensor_path) +
-        "\n# the LMS 200, every key, in the format of config/lms200.yaml\nsensor:\n";
-    std::stringstream in(io::Lms200ConfigToYaml(s.lms));
-    for (std::string line; std::getline(in, line);) {
-        y += "  " + line + "\n";
-    }
-    return y;
 }
 
 }  // namespace
@@ -157,17 +145,25 @@ SimSetup ResolveSimSetup(const SimFlags& flags) {
 }
 
 std::string EffectiveConfigYaml(const SimSetup& s) {
-    std::string y = "# casmap simulate: the effective configuration of this run\n";
-    y += "scene: " + s.scene_path + "\n";
-    y += "motion: " + s.motion_name + "\n";
-    y += "seed: " + std::to_string(s.seed) + "\n";
-    y += "grid: " + GridYaml(s.grid) + "\n";
-    y += "rig_file: " + (s.rig_path.empty() ? std::string("null") : s.rig_path) + "\n";
-    y += SensorYaml(s);
-    y += "# the rig, every key, in the format of config/rig_table.yaml (table: T/TR/TP/TRP; "
-         "vehicle)\n";
-    y += io::RigConfigToYaml(io::RigConfig{s.table, s.vehicle_config, s.pose_error});
-    return y;
+    YAML::Emitter out;
+    out << YAML::Comment("casmap simulate: the effective configuration of this run");
+    out << YAML::BeginMap;
+    out << YAML::Key << "scene" << YAML::Value << s.scene_path;
+    out << YAML::Key << "motion" << YAML::Value << s.motion_name;
+    out << YAML::Key << "seed" << YAML::Value << s.seed;
+    out << YAML::Key << "grid" << YAML::Value;
+    io::EmitGrid(out, s.grid);
+    io::EmitPathOrNull(out, "rig_file", s.rig_path);
+    io::EmitPathOrNull(out, "sensor_file", s.sensor_path);
+    io::EmitCommentLine(out, "the LMS 200, every key, in the format of config/lms200.yaml");
+    out << YAML::Key << "sensor" << YAML::Value;
+    io::EmitLms200Config(out, s.lms);
+    io::EmitCommentLine(out,
+                        "the rig, every key, in the format of config/rig_table.yaml (table: "
+                        "T/TR/TP/TRP; vehicle)");
+    io::EmitRigConfig(out, io::RigConfig{s.table, s.vehicle_config, s.pose_error});
+    out << YAML::EndMap;
+    return io::EmittedText(out);
 }
 
 core::Trajectory RigTrajectory(const SimSetup& setup, const core::Scene& scene) {

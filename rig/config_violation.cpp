@@ -1,7 +1,5 @@
 #include "casmap/rig/config_violation.hpp"
 
-#include <sstream>
-
 #include "casmap/core/input_error.hpp"
 
 namespace casmap::rig {
@@ -10,13 +8,6 @@ void ThrowIfViolated(const std::optional<ConfigViolation>& violation, const std:
     if (violation) {
         throw MakeInputError(where, violation->field, violation->value, violation->rule);
     }
-}
-
-std::string FormatNumber(double value) {
-    std::ostringstream out;
-    out.precision(10);
-    out << value;
-    return out.str();
 }
 
 }  // namespace casmap::rig

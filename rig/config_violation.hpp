@@ -3,6 +3,8 @@
 #include <optional>
 #include <string>
 
+#include "casmap/core/text.hpp"
+
 namespace casmap::rig {
 
 /// The first rule a rig config breaks: field path (e.g. "table.speed_m_s"), value and rule.
@@ -16,7 +18,7 @@ struct ConfigViolation {
 /// Throws InputError "<where>: <field> = <value> (<rule>)" if `violation` holds one.
 void ThrowIfViolated(const std::optional<ConfigViolation>& violation, const std::string& where);
 
-/// Number formatting for messages (shortest round-trip form, e.g. "1.5").
-[[nodiscard]] std::string FormatNumber(double value);
+/// core::FormatNumber, the one number formatter (shortest round-trip form, e.g. "1.5").
+using core::FormatNumber;
 
 }  // namespace casmap::rig

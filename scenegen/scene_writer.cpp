@@ -1,7 +1,6 @@
 #include "casmap/scenegen/scene_writer.hpp"
 
 #include <bit>
-#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -47,15 +46,6 @@ void Append(std::string& out, T value) {
 }
 
 }  // namespace
-
-std::string FormatNumber(double value) {
-    if (value == 0.0) {
-        return "0";  // also for -0
-    }
-    char buffer[64];
-    const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
-    return ec == std::errc() ? std::string(buffer, ptr) : std::string("0");
-}
 
 std::string SceneYaml(const GeneratedScene& scene,
                       const std::string& ground_mesh,

@@ -8,12 +8,13 @@
 #include <vector>
 
 #include "casmap/core/scene.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/scenegen/scene_generator.hpp"
 
 namespace casmap::scenegen {
 
-/// Shortest decimal text that reads back as the same double.
-[[nodiscard]] std::string FormatNumber(double value);
+/// core::FormatNumber, the one number formatter (shortest text that reads back exactly).
+using core::FormatNumber;
 
 /// The scene as YAML: the ground (mesh `ground_mesh`, terrain: true) and every object; rocks
 /// name `rock_files[rock_mesh]` with their per-axis scale. Paths are written as given (relative

@@ -57,29 +57,6 @@ core::GridGeometry ChooseGrid(const MapOptions& opt, const io::RunData& run) {
     return pipeline::GridCoveringBeams(run.scans, run.poses, 0.025, opt.run);
 }
 
-std::string MapYaml(const MapOptions& opt,
-                    const io::RunData& run,
-                    const pipeline::MappedRun& mapped) {
-    const mapper::MapperStats& s = mapped.stats;
-    std::string y = "# casmap map: the settings that produced the maps in this directory\n";
-    y += "run: " + fs::absolute(opt.run).string() + "\n";
-    y += "seed: " + (run.seed ? std::to_string(*run.seed) : std::string("null")) + "\n";
-    y += "grid: " + pipeline::GridYaml(mapped.config.grid) + "\n";
-    y += "mapper: {mode: " + std::string(pipeline::ToString(mapped.settings.mode)) +
-         ", unknown: " + std::string(mapper::ToString(mapped.settings.unknown)) +
-         ", prefilter: " + std::string(pipeline::ToString(mapped.settings.prefilter)) +
-         ", a: " + std::to_string(mapped.config.a) +
-         ", delta_l_m: " + pipeline::FormatNumber(mapped.config.delta_l_m) +
-         ", scan_period_s: " + pipeline::FormatNumber(mapped.config.scan_period_s) + "}\n";
-    y += "stats: {beams_seen: " + std::to_string(s.beams_seen) +
-         ", beams_not_ok: " + std::to_string(s.beams_not_ok) +
-         ", beams_no_pose: " + std::to_string(s.beams_no_pose) +
-         ", beams_outside: " + std::to_string(s.beams_outside) +
-         ", beams_rejected: " + std::to_string(s.beams_rejected) +
-         ", beams_mapped: " + std::to_string(s.beams_mapped) + "}\n";
-    return y;
-}
-
 // The TIFF and PNG of one layer, written to the temporaries of `outputs`.
 struct LayerFiles {
     fs::path tiff;
@@ -142,7 +119,8 @@ void RunMap(const MapOptions& opt) {
     if (with_truth) {
         WriteLayer(truth_files, *run.maps.truth_m, "ground truth", "m", nullptr);
     }
-    io::WriteTextAtomically(yaml_tmp, MapYaml(opt, run, mapped));
+    io::WriteTextAtomically(
+        yaml_tmp, pipeline::MapConfigYaml(fs::absolute(opt.run).string(), run.seed, mapped));
     if (!run.config_yaml.empty()) {
         io::WriteTextAtomically(config_tmp, run.config_yaml);
     }

@@ -32,6 +32,7 @@
 #include "casmap/drivers/partial_scans.hpp"
 #include "casmap/drivers/pose_file.hpp"
 #include "casmap/io/run_file.hpp"
+#include "casmap/io/yaml_emit.hpp"
 
 namespace casmap::app {
 namespace {
@@ -189,23 +190,35 @@ int ConnectWithRetry(drivers::Lms200Driver& driver, const RecordOptions& opt) {
 
 std::string ConfigYaml(const RecordOptions& opt, const drivers::Lms200Driver& driver) {
     const drivers::DeviceInfo& d = driver.info();
-    std::string y = "# casmap record: how this run was recorded\n";
-    y += "device: \"" + opt.device + "\"\n";
-    y += "baud: " + std::to_string(d.baud) + "\n";
-    y += "scanner:\n  type: \"" + d.type + "\"\n";
-    y += "  variant: {angle_deg: " + std::to_string(d.variant.angle_deg) +
-         ", resolution_cdeg: " + std::to_string(d.variant.resolution_cdeg) + "}\n";
-    y += "  measuring_mode: " + std::to_string(d.config.measuring_mode()) + "\n";
-    y += "  units: " + std::string(d.config.units() == 1 ? "mm" : "cm") + "\n";
-    y += "  output_mode: \"" + d.output.ToString() + "\"\n";
-    y += std::string("  realtime_indices: ") + (d.config.realtime_indices() ? "true" : "false") +
-         "\n";
-    y += std::string("stamps: \"system clock, s since 1970; beam 0 = ") +
-         (driver.synchronised() ? "sweep grid t0 + k T (scan clock)"
-                                : "arrival - transmission - sweep") +
-         "\"\n";
-    y += "poses: " + (opt.poses.empty() ? std::string("null") : "\"" + opt.poses + "\"") + "\n";
-    return y;
+    YAML::Emitter out;
+    out << YAML::Comment("casmap record: how this run was recorded");
+    out << YAML::BeginMap;
+    out << YAML::Key << "device" << YAML::Value << YAML::DoubleQuoted << opt.device;
+    out << YAML::Key << "baud" << YAML::Value << d.baud;
+    out << YAML::Key << "scanner" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "type" << YAML::Value << YAML::DoubleQuoted << d.type;
+    out << YAML::Key << "variant" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "angle_deg" << YAML::Value << d.variant.angle_deg;
+    out << YAML::Key << "resolution_cdeg" << YAML::Value << d.variant.resolution_cdeg;
+    out << YAML::EndMap;
+    out << YAML::Key << "measuring_mode" << YAML::Value << int{d.config.measuring_mode()};
+    out << YAML::Key << "units" << YAML::Value << (d.config.units() == 1 ? "mm" : "cm");
+    out << YAML::Key << "output_mode" << YAML::Value << YAML::DoubleQuoted << d.output.ToString();
+    out << YAML::Key << "realtime_indices" << YAML::Value
+        << (d.config.realtime_indices() ? "true" : "false");
+    out << YAML::EndMap;
+    out << YAML::Key << "stamps" << YAML::Value << YAML::DoubleQuoted
+        << std::string("system clock, s since 1970; beam 0 = ") +
+               (driver.synchronised() ? "sweep grid t0 + k T (scan clock)"
+                                      : "arrival - transmission - sweep");
+    out << YAML::Key << "poses" << YAML::Value;
+    if (opt.poses.empty()) {
+        io::EmitNull(out);
+    } else {
+        out << YAML::DoubleQuoted << opt.poses;
+    }
+    out << YAML::EndMap;
+    return io::EmittedText(out);
 }
 
 drivers::DriverConfig DriverConfigOf(const RecordOptions& opt) {

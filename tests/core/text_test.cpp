@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+#include <string>
+
 namespace casmap::core {
 namespace {
 
@@ -36,6 +40,23 @@ TEST(ParseNumberList, ExactCountNoTrailingComma) {
     EXPECT_FALSE(ParseNumberList("1,2,3,", 3).has_value());
     EXPECT_FALSE(ParseNumberList("1,,3", 3).has_value());
     EXPECT_FALSE(ParseNumberList("1,x,3", 3).has_value());
+}
+
+TEST(FormatNumber, ShortestRoundTripAndYamlSpecials) {
+    EXPECT_EQ(FormatNumber(0.1), "0.1");
+    EXPECT_EQ(FormatNumber(1.0), "1");
+    EXPECT_EQ(FormatNumber(-2.5), "-2.5");
+    EXPECT_EQ(FormatNumber(1000.0), "1000");
+    EXPECT_EQ(FormatNumber(1e-5), "1e-05");
+    EXPECT_EQ(FormatNumber(0.1 + 0.2), "0.30000000000000004");
+    EXPECT_EQ(FormatNumber(-0.0), "0");
+    EXPECT_EQ(FormatNumber(std::nan("")), ".nan");
+    EXPECT_EQ(FormatNumber(std::numeric_limits<double>::infinity()), ".inf");
+    EXPECT_EQ(FormatNumber(-std::numeric_limits<double>::infinity()), "-.inf");
+    for (const double v :
+         {0.025, 1.0 / 3.0, 6.02214076e23, -2.2250738585072014e-308, 1e300, 40.0}) {
+        EXPECT_EQ(std::stod(FormatNumber(v)), v) << FormatNumber(v);
+    }
 }
 
 }  // namespace

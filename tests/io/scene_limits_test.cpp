@@ -140,10 +140,10 @@ TEST(RigLimits, CoursesOfAThousandKilometresOrCrawlingSpeedsAreRejected) {
         const char* yaml;
         const char* expected;
     } cases[] = {
-        {"table:\n  course: {end_x_m: 1e6}\n", "table.course.end_x_m = 1000000"},
-        {"table:\n  course: {width_m: 1e6}\n", "table.course.width_m = 1000000"},
+        {"table:\n  course: {end_x_m: 1e6}\n", "table.course.end_x_m = 1e+06"},
+        {"table:\n  course: {width_m: 1e6}\n", "table.course.width_m = 1e+06"},
         {"table:\n  speed_m_s: 1e-6\n", "table.speed_m_s = 1e-06"},
-        {"vehicle:\n  end_x_m: 1e6\n", "vehicle.end_x_m = 1000000"},
+        {"vehicle:\n  end_x_m: 1e6\n", "vehicle.end_x_m = 1e+06"},
         {"vehicle:\n  speed_m_s: 1e-6\n", "vehicle.speed_m_s = 1e-06"},
     };
     for (const auto& c : cases) {
