@@ -9,6 +9,7 @@
 #include <set>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/pipeline/bench_pipelines.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
 #include "casmap/pipeline/sweep_detail.hpp"
 
@@ -158,7 +159,11 @@ bool AxisValueAllowed(const SweepOptions& opt, const std::string& name, double v
     return true;
 }
 
-mapper::FilterMethod SweepFilter(const SweepOptions& opt) {
+std::optional<mapper::FilterMethod> SweepFilter(const SweepOptions& opt) {
+    const std::vector<std::string>& fast = SweepableFilters();
+    if (std::find(fast.begin(), fast.end(), opt.filter) == fast.end()) {
+        return std::nullopt;
+    }
     return mapper::ParseFilterMethod(opt.filter, "filter");
 }
 
@@ -243,9 +248,12 @@ std::vector<std::uint64_t> SweepOptions::TrainSeeds() const {
 }
 
 void SweepOptions::Validate() const {
-    if (std::find(SweepableFilters().begin(), SweepableFilters().end(), filter) ==
-        SweepableFilters().end()) {
-        throw MakeInputError("", "filter", filter, "allowed: cas, cas_trail, cas_terrain");
+    try {
+        (void)FindPipeline(filter, "filter");
+    } catch (const InputError& e) {
+        throw MakeInputError("", "filter", filter,
+                             "allowed: a bench pipeline name (cas, cas_trail, cas_terrain, "
+                             "range_jump_cas, ...; casmap bench --pipelines)");
     }
     for (std::size_t i = 0; i < axes.size(); ++i) {
         const SweepAxis& axis = axes[i];
@@ -295,8 +303,6 @@ void SweepOptions::Validate() const {
     }
     const BenchSettings settings = ResolveBenchSettings(courses_dir, rig_path, sensor_path, seed);
     (void)detail::Setups(*this, settings, SortedTests(tests));
-    const mapper::FilterMethod method = detail::SweepFilter(*this);
-    (void)method;
     for (const auto& p : detail::GridPoints(axes)) {
         mapper::FilterParams check;
         for (const std::string& o : detail::PointOverrides(*this, p)) {

@@ -3,6 +3,7 @@
 // Internals shared by sweep.cpp (options), sweep_run.cpp (the runs) and sweep_report.cpp.
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,7 +42,8 @@ void CheckAxisValue(const SweepOptions& opt, const std::string& name, double val
 /// True when CheckAxisValue accepts the value.
 [[nodiscard]] bool AxisValueAllowed(const SweepOptions& opt, const std::string& name, double value);
 
-/// The filter method named by opt.filter.
-[[nodiscard]] mapper::FilterMethod SweepFilter(const SweepOptions& opt);
+/// The map filter of opt.filter when it is one of SweepableFilters() (scored on the paper's map
+/// directly); nullopt for any other pipeline name (scored through ScorePipelines).
+[[nodiscard]] std::optional<mapper::FilterMethod> SweepFilter(const SweepOptions& opt);
 
 }  // namespace casmap::pipeline::detail

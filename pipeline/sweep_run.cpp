@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "casmap/core/parallel.hpp"
+#include "casmap/pipeline/bench_pipelines.hpp"
 #include "casmap/pipeline/distributed.hpp"
 #include "casmap/pipeline/sweep.hpp"
 #include "casmap/pipeline/sweep_detail.hpp"
@@ -122,9 +123,9 @@ struct Context {
     std::vector<std::uint64_t> seeds;       // training
     std::vector<std::uint64_t> held_seeds;  // held-out
     std::vector<int> held_courses;
-    std::vector<int> all_courses;  // sorted union
-    std::vector<Course> loaded;    // per all_courses
-    mapper::FilterMethod method = mapper::FilterMethod::kCas;
+    std::vector<int> all_courses;                // sorted union
+    std::vector<Course> loaded;                  // per all_courses
+    std::optional<mapper::FilterMethod> method;  // nullopt: opt.filter via ScorePipelines
     int threads = 1;
     const DistributedSession* session = nullptr;
 
@@ -185,6 +186,30 @@ bool Applies(const SweepOptions& opt, const Point& p, const TrainRun& run) {
     return i < 0 || p[static_cast<std::size_t>(i)] == run.speed;
 }
 
+/// The swept filter's score on one mapped run: the filter alone on the paper's map for cas,
+/// cas_trail and cas_terrain; any other pipeline through ScorePipelines (it may map `sim`'s
+/// scans again: a pre-filter or the Kalman mapper), without Table II shares.
+CasScore ScoreSwept(const Context& cx,
+                    const MappedBenchRun& run,
+                    const SimulatedRun& sim,
+                    const Course& course,
+                    const mapper::FilterParams& params) {
+    if (cx.method) {
+        return ScoreCas(run, course, params, *cx.method);
+    }
+    const BenchRun b = ScorePipelines(run, &sim, course, params, {cx.opt.filter}, nullptr);
+    CasScore s;
+    s.pi = b.filters.at(cx.opt.filter).pi;
+    s.spikes = b.filters.at(cx.opt.filter).spikes;
+    s.poles = b.poles.size();
+    const auto kept = b.poles_kept.find(cx.opt.filter);
+    s.poles_kept = kept != b.poles_kept.end() ? kept->second.size() : 0;
+    s.classes.all.removed_pct = std::nan("");
+    s.classes.all.filled_pct = std::nan("");
+    s.classes.all.untouched_pct = std::nan("");
+    return s;
+}
+
 /// Accumulates one run's score into a point.
 void Add(SweepPoint& pt, const CasScore& s, std::vector<double>& pis) {
     pis.push_back(s.pi);
@@ -232,9 +257,8 @@ std::map<Point, SweepPoint> TrainRound(const Context& cx,
                 }
                 const MappedBenchRun& mapped = by_a.at(a);
                 out += '1';
-                PutScore(out, ScoreCas(mapped, course,
-                                       RunFilterParams(mapped, detail::PointOverrides(opt, p)),
-                                       cx.method));
+                PutScore(out, ScoreSwept(cx, mapped, sim, course,
+                                         RunFilterParams(mapped, detail::PointOverrides(opt, p))));
             }
             PutStr(out, by_a.begin()->second.config_yaml);  // the smallest a's
             return out;
@@ -404,9 +428,9 @@ std::vector<HeldOutRun> HeldOut(const Context& cx,
             const MappedBenchRun paper_run =
                 a == 3 ? chosen_run : MapBenchRun(setup, course, sim, 3);
             std::string out = "R";
-            PutScore(out, ScoreCas(chosen_run, course,
-                                   RunFilterParams(chosen_run, detail::PointOverrides(opt, best)),
-                                   cx.method));
+            PutScore(out,
+                     ScoreSwept(cx, chosen_run, sim, course,
+                                RunFilterParams(chosen_run, detail::PointOverrides(opt, best))));
             PutScore(out, ScoreCas(paper_run, course, RunFilterParams(paper_run, {})));
             return out;
         } catch (const std::exception& e) {

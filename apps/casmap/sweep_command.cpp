@@ -124,7 +124,7 @@ void AddSweepCommand(CLI::App& app, CommonOptions& common) {
         ->capture_default_str();
     sub->add_option("--train-courses", flags->train_courses, "the same as --courses")
         ->excludes(sub->get_option("--courses"));
-    sub->add_option("--filter", opt.filter, "filter to tune: cas, cas_trail, cas_terrain")
+    sub->add_option("--filter", opt.filter, "pipeline to tune: cas, cas_trail, cas_terrain or any casmap bench pipeline")
         ->capture_default_str();
     sub->add_option("--train-seeds", flags->train_seeds,
                     "training seeds, e.g. 1-2 or 1,5 (default: --seed)");

@@ -121,7 +121,7 @@ TEST(BenchCommand, BadInputExitsTwoWithOneLineAndNoJson) {
         {"sweep --set Q=1:5:1", "Q"},
         {"sweep --set B=1:x:1", "B=1:x:1"},
         {"sweep --courses 4 --tests Z", "--tests"},
-        {"sweep --courses 4 --filter median", "--filter = median"},
+        {"sweep --courses 4 --filter bogus", "--filter = bogus"},
         {"sweep --courses 4 --train-seeds 1-2 --test-seeds 2", "--test-seeds = seed 2, course 4"},
         {"sweep --courses 4 --train-seeds x", "--train-seeds = x"},
         {"sweep --courses 4 --grow 99", "--grow = 99"},
