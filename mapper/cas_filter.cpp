@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/mapper/cas_row_k2.hpp"
 #include "casmap/mapper/cas_variants.hpp"
 #include "casmap/mapper/filters.hpp"
 #include "casmap/mapper/skeleton_median.hpp"
@@ -479,6 +480,20 @@ void CasFilterInto(const core::MapF& elevation,
     const Thresholds t = MakeThresholds(p, abs_h, certainty);
     const float* c = certainty.data.data();
     float* y = out.elevation.data.data();
+    if (fused && detail::CasRowK2Available()) {
+        // The default form on AVX2: one pass per row (mapper/cas_row_k2.hpp), same bits.
+        thread_local std::vector<float> scratch;
+        scratch.resize(3 * cols + 24);
+        const detail::CasK2Thresholds t2{t.A, t.G, t.h_sum_min, t.global_max_h, t.global};
+        for (int i = k; i < elevation.rows - k; ++i) {
+            n_fills =
+                detail::CasRowK2(elevation.data.data(), c, cols, static_cast<std::size_t>(i), t2,
+                                 scratch.data(), y, out.classes.data.data(), fills.data(), n_fills);
+        }
+        SkeletonMedian(elevation.data.data(), c, elevation.cols, k, p.wm_empty,
+                       std::span<const std::size_t>(fills.data(), n_fills), y);
+        return;
+    }
     RowStats s(cols);
     for (int i = k; i < elevation.rows - k; ++i) {
         if (fused) {
