@@ -13,6 +13,13 @@ install(EXPORT casmapTargets NAMESPACE casmap:: DESTINATION ${CASMAP_INSTALL_CMA
 # Embree, assimp and Bullet only then.
 set(CASMAP_PACKAGE_WITH_SIM ${CASMAP_BUILD_SIM})
 set(CASMAP_HDF5_LINK_LIBRARIES ${HDF5_C_LIBRARIES})
+# casmap::view (static) links cpp-httplib and nlohmann_json privately: the config file finds
+# them when the view is in the package.
+if(TARGET casmap_view)
+    set(CASMAP_PACKAGE_WITH_VIEW ON)
+else()
+    set(CASMAP_PACKAGE_WITH_VIEW OFF)
+endif()
 if(CASMAP_BUILD_SIM AND CASMAP_WITH_MPI)
     set(CASMAP_PACKAGE_WITH_MPI ON)
     set(CASMAP_MPI_LINK_LIBRARIES ${MPI_C_LIBRARIES})

@@ -20,6 +20,34 @@ trap cleanup EXIT
 prefix=$work/prefix
 
 
+# check_view_consumer PREFIX: a project of its own that links casmap::view and runs.
+check_view_consumer() {
+    local dir=$work/view-consumer
+    mkdir -p "$dir"
+    cat >"$dir/CMakeLists.txt" <<'CMAKE'
+cmake_minimum_required(VERSION 3.20)
+project(view_consumer CXX)
+find_package(casmap REQUIRED)
+add_executable(view_consumer main.cpp)
+target_link_libraries(view_consumer PRIVATE casmap::view)
+CMAKE
+    cat >"$dir/main.cpp" <<'CPP'
+#include <cstdio>
+
+#include "casmap/view/server.hpp"
+
+int main() {
+    const bool ok = casmap::view::IsLoopback("127.0.0.1") && !casmap::view::IsLoopback("0.0.0.0");
+    std::puts(ok ? "view consumer: ok" : "view consumer: wrong answer");
+    return ok ? 0 : 1;
+}
+CPP
+    cmake -S "$dir" -B "$dir/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+        -DCMAKE_PREFIX_PATH="$1" >/dev/null
+    cmake --build "$dir/build" >/dev/null
+    "$dir/build/view_consumer"
+}
+
 # check_install BUILD: install BUILD, build the examples standalone against it, run them.
 check_install() {
     local build=$1 prefix=$work/prefix-$(basename "$1")
@@ -40,6 +68,10 @@ check_install() {
     cmake -S examples -B "$ex" -G Ninja -DCMAKE_BUILD_TYPE=Release \
         -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
     cmake --build "$ex" -j "$jobs" >/dev/null
+    # casmap::view (static, private deps cpp-httplib and nlohmann_json) links in a consumer.
+    if grep -q 'set(casmap_WITH_VIEW ON)' "$prefix/lib/cmake/casmap/casmapConfig.cmake"; then
+        check_view_consumer "$prefix"
+    fi
     local casmap=$prefix/bin/casmap
     export CASMAP_DATA_DIR=$prefix/share/casmap
     export PYTHONPATH=$prefix/$($python -c "import sysconfig; print(sysconfig.get_path('platlib', 'posix_prefix', vars={'platbase': '.', 'base': '.'}))")
