@@ -11,6 +11,7 @@
 
 #include "bindings.hpp"
 #include "casmap/core/input_error.hpp"
+#include "casmap/mapper/filter_inputs.hpp"
 #include "casmap/mapper/filters.hpp"
 #include "casmap/mapper/metrics.hpp"
 #include "casmap/mapper/terrain_mapper.hpp"
@@ -20,20 +21,6 @@
 
 namespace casmap::python {
 namespace {
-
-// The checks `casmap filter` makes on the maps it reads: finite, certainty counts >= 0.
-void CheckValues(const core::MapF& map, const std::string& name, bool non_negative) {
-    for (int i = 0; i < map.rows; ++i) {
-        for (int j = 0; j < map.cols; ++j) {
-            const float v = map.at(i, j);
-            if (!std::isfinite(v) || (non_negative && v < 0.0F)) {
-                throw MakeInputError(
-                    name, "pixel (row " + std::to_string(i) + ", col " + std::to_string(j) + ")",
-                    std::to_string(v), non_negative ? "must be finite and >= 0" : "must be finite");
-            }
-        }
-    }
-}
 
 py::tuple Filter(const std::string& method_name,
                  const py::handle& elevation_array,
@@ -46,21 +33,9 @@ py::tuple Filter(const std::string& method_name,
     }
     params.Validate();
     const core::MapF elevation = ToMap(elevation_array, "elevation");
-    CheckValues(elevation, "elevation", false);
-    core::MapF certainty;
-    if (!certainty_array.is_none()) {
-        certainty = ToMap(certainty_array, "certainty");
-        if (!certainty.SameShape(elevation)) {
-            throw MakeInputError(
-                "certainty", "shape",
-                std::to_string(certainty.rows) + "x" + std::to_string(certainty.cols),
-                "must equal the elevation map's " + std::to_string(elevation.rows) + "x" +
-                    std::to_string(elevation.cols));
-        }
-        CheckValues(certainty, "certainty", true);
-    } else if (method == mapper::FilterMethod::kCas) {
-        throw MakeInputError("", "certainty", "None", "required for method cas");
-    }
+    const core::MapF certainty =
+        certainty_array.is_none() ? core::MapF() : ToMap(certainty_array, "certainty");
+    mapper::CheckFilterInputs(method, elevation, certainty, params);  // the CLI's checks
     mapper::FilterResult result;
     {
         py::gil_scoped_release release;

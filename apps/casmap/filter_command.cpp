@@ -6,7 +6,6 @@
 // (PixelClass codes as floats: 0 untouched, 1 removed, 2 filled, 3 unprocessed border) and
 // OUT_classes.png. Everything is computed before the first file is written; each file is
 // written atomically. The filters are single-threaded; --threads changes nothing.
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -14,8 +13,10 @@
 #include <vector>
 
 #include "apps/casmap/commands.hpp"
+#include "apps/casmap/flag_names.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/image.hpp"
+#include "casmap/mapper/filter_inputs.hpp"
 #include "casmap/mapper/filters.hpp"
 #include "casmap/mapper/metrics.hpp"
 #include "casmap/pipeline/preset.hpp"
@@ -32,30 +33,6 @@ struct FilterOptions {
     std::string preset;
     std::vector<std::string> sets;
 };
-
-// Maps on disk must hold finite numbers; certainty counts are >= 0.
-// allow_nan: unknown cells may be NaN (--set unknown=nan); infinities are never allowed.
-void CheckValues(const core::MapF& map,
-                 const std::string& file,
-                 bool non_negative,
-                 bool allow_nan = false) {
-    for (int i = 0; i < map.rows; ++i) {
-        for (int j = 0; j < map.cols; ++j) {
-            const float v = map.at(i, j);
-            if (allow_nan && std::isnan(v)) {
-                continue;
-            }
-            if (!std::isfinite(v) || (non_negative && v < 0.0F)) {
-                throw MakeInputError(
-                    file, "pixel (row " + std::to_string(i) + ", col " + std::to_string(j) + ")",
-                    std::to_string(v),
-                    non_negative ? "must be finite and >= 0"
-                                 : (allow_nan ? "must be finite or NaN"
-                                              : "must be finite (NaN needs --set unknown=nan)"));
-            }
-        }
-    }
-}
 
 fs::path Beside(const fs::path& out, const std::string& suffix, const std::string& ext) {
     return out.parent_path() / (out.stem().string() + suffix + ext);
@@ -92,26 +69,14 @@ void RunFilterCommand(const FilterOptions& opt) {
     if (!fs::is_directory(dir)) {
         throw MakeInputError("", "--out", opt.out, "directory " + dir.string() + " does not exist");
     }
-    const bool cas = method == mapper::FilterMethod::kCas ||
-                     method == mapper::FilterMethod::kCasTerrain ||
-                     method == mapper::FilterMethod::kCasTrail;
-    if (cas && opt.certainty.empty()) {
-        throw MakeInputError("", "--certainty", "", "required for --method " + opt.method);
+    const bool cas = mapper::NeedsCertainty(method);
+    if (cas && opt.certainty.empty()) {  // before reading any map
+        mapper::CheckFilterInputs(method, {}, {}, params);
     }
     const core::MapF elevation = io::ReadMapTiff(opt.elevation);
-    CheckValues(elevation, opt.elevation, false, params.cas.unknown == mapper::Unknown::kNaN);
-    core::MapF certainty;
-    if (!opt.certainty.empty()) {
-        certainty = io::ReadMapTiff(opt.certainty);
-        if (!certainty.SameShape(elevation)) {
-            throw MakeInputError(
-                opt.certainty, "size",
-                std::to_string(certainty.rows) + "x" + std::to_string(certainty.cols),
-                "must equal the elevation map's " + std::to_string(elevation.rows) + "x" +
-                    std::to_string(elevation.cols) + " (" + opt.elevation + ")");
-        }
-        CheckValues(certainty, opt.certainty, true);
-    }
+    const core::MapF certainty =
+        opt.certainty.empty() ? core::MapF() : io::ReadMapTiff(opt.certainty);
+    mapper::CheckFilterInputs(method, elevation, certainty, params, {opt.elevation, opt.certainty});
 
     const mapper::FilterResult result = mapper::RunFilter(method, elevation, certainty, params);
     core::Raster<std::uint8_t> unknown;
@@ -165,7 +130,9 @@ void AddFilterCommand(CLI::App& app, CommonOptions& common) {
     sub->add_option("--out", opt->out, "output OUT.tiff (also OUT.png; OUT_classes.* for cas)")
         ->required();
     AddThreadsOption(sub, common);
-    sub->callback([opt] { RunFilterCommand(*opt); });
+    sub->callback([opt] {
+        WithFlagNames({{"certainty", "--certainty"}}, [&] { RunFilterCommand(*opt); });
+    });
 }
 
 }  // namespace casmap::app

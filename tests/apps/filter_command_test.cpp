@@ -141,7 +141,7 @@ TEST_F(FilterCommand, RejectsMultiChannelTiff) {
 TEST_F(FilterCommand, RejectsSizeMismatch) {
     io::WriteMapTiff(dir_ / "small.tiff", core::MapF(10, 24, 3.0F));
     ExpectBadInput("--method cas --elevation " + P("h.tiff") + " --certainty " + P("small.tiff"),
-                   "small.tiff: size = 10x24");
+                   "small.tiff: shape = 10x24");
 }
 
 TEST_F(FilterCommand, RejectsUnknownSetName) {
