@@ -274,6 +274,9 @@ void SweepOptions::Validate() const {
             }
         }
     }
+    if (search != "grid" && search != "descent") {
+        throw MakeInputError("", "search", search, "allowed: grid, descent");
+    }
     if (grow < 0 || grow > kMaxGrowRounds) {
         throw MakeInputError("", "grow", std::to_string(grow), "allowed: 0..20 rounds");
     }

@@ -54,6 +54,7 @@ struct SweepOptions {
     std::vector<std::uint64_t> test_seeds;    // held-out seeds (empty: the training seeds)
     std::vector<int> test_courses;            // held-out courses (empty: the training courses)
     int grow = 0;                             // growth rounds (0..20): extend edge axes
+    std::string search = "grid";              // grid (every point) or descent (coordinate)
     std::string courses_dir;                  // empty: CoursesDir()
     std::string rig_path;                     // rig YAML; empty: the paper course
     std::string sensor_path;                  // LMS 200 YAML; empty: built-in config
@@ -109,6 +110,15 @@ struct SweepGrowth {
 };
 
 /// One filter's score on one held-out run.
+/// One step of a coordinate descent: after the line search along `axis` in `pass`, the best
+/// point and how many points had been scored.
+struct SweepStep {
+    int pass = 0;
+    std::string axis;
+    std::vector<double> best;
+    std::size_t scored = 0;
+};
+
 struct HeldOutScore {
     double pi = std::numeric_limits<double>::quiet_NaN();
     std::int64_t spikes = 0;
@@ -127,12 +137,14 @@ struct HeldOutRun {
 
 struct SweepResult {
     SweepOptions options;                  // as given, axes as grown
-    std::vector<SweepPoint> points;        // row-major over the axes, first axis slowest
+    std::vector<SweepPoint> points;        // scored points, row-major over the axes (first
+                                           // axis slowest); descent scores a subset
     std::size_t best = 0;                  // the chosen point (rule in best_rule)
     bool best_keeps_every_pole = false;    // false: no point kept every pole (fallback rule)
     std::string best_rule;                 // the rule that chose `best`, in words
     std::vector<std::size_t> pareto;       // non-dominated points (PI, poles kept, spikes)
     std::vector<SweepGrowth> growth;       // growth rounds, in order
+    std::vector<SweepStep> path;           // descent only: the best point after each line
     std::vector<std::string> run_names;    // training runs: "course04_T" (+ "_seedS", "_speedV")
     std::vector<std::string> run_configs;  // effective configuration YAML per training run
     std::vector<HeldOutRun> held_out;      // empty without held-out runs

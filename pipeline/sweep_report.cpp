@@ -145,7 +145,8 @@ std::string SweepJsonWithElapsed(const SweepResult& result, double elapsed_s) {
                     {"tests", SortedTests(opt.tests)},
                     {"seed", opt.TrainSeeds().front()},
                     {"seeds", opt.TrainSeeds()},
-                    {"grow", opt.grow}};
+                    {"grow", opt.grow},
+                    {"search", opt.search}};
     std::string j = head.dump();
     j.pop_back();  // the closing brace: the points follow
     j += ",\n \"points\": [";
@@ -159,12 +160,20 @@ std::string SweepJsonWithElapsed(const SweepResult& result, double elapsed_s) {
                               {"added", g.added},
                               {"best_before", ParamsJson(opt, g.best_before)}});
     }
+    Json path = Json::array();
+    for (const SweepStep& st : result.path) {
+        path.push_back(Json{{"pass", st.pass},
+                            {"axis", st.axis},
+                            {"best", ParamsJson(opt, st.best)},
+                            {"scored", st.scored}});
+    }
     Json tail{{"best_point", result.best},
               {"best_params", ParamsJson(opt, result.points[result.best].values)},
               {"best_keeps_every_pole", result.best_keeps_every_pole},
               {"best_rule", result.best_rule},
               {"pareto_front", result.pareto},
-              {"growth", growth}};
+              {"growth", growth},
+              {"path", path}};
     if (!result.held_out.empty()) {
         tail["held_out"] = HeldOutJson(result);
     }
@@ -207,6 +216,13 @@ std::string SweepTable(const SweepResult& result) {
     for (const SweepGrowth& g : result.growth) {
         t += "grew (round " + std::to_string(g.round) + "): " + g.axis +
              " += " + FormatNumber(g.added.front()) + "\n";
+    }
+    for (const SweepStep& st : result.path) {
+        t += "descent pass " + std::to_string(st.pass) + ", " + st.axis + ": best";
+        for (std::size_t i = 0; i < st.best.size(); ++i) {
+            t += " " + opt.axes[i].name + "=" + FormatNumber(st.best[i]);
+        }
+        t += " (" + std::to_string(st.scored) + " points scored)\n";
     }
     if (!result.held_out.empty()) {
         t += "held-out runs (" + std::to_string(result.held_out.size()) +
@@ -255,14 +271,16 @@ std::string WriteSweepOutputs(const fs::path& dir, const SweepResult& result) {
         const std::size_t ny = h.y_values.size();
         h.values.assign(nx * ny, std::nan(""));
         h.marked.assign(nx * ny, false);
-        for (std::size_t ix = 0; ix < nx; ++ix) {
-            for (std::size_t iy = 0; iy < ny; ++iy) {
-                const SweepPoint& pt = result.points[ix * ny + iy];
-                h.values[iy * nx + ix] = pt.pi.mean;
-                h.marked[iy * nx + ix] = pt.KeepsEveryPole();
-                if (ix * ny + iy == result.best) {
-                    h.starred = static_cast<int>(iy * nx + ix);
-                }
+        for (std::size_t p = 0; p < result.points.size(); ++p) {  // descent: a subset
+            const SweepPoint& pt = result.points[p];
+            const auto ix = static_cast<std::size_t>(
+                std::find(h.x_values.begin(), h.x_values.end(), pt.values[0]) - h.x_values.begin());
+            const auto iy = static_cast<std::size_t>(
+                std::find(h.y_values.begin(), h.y_values.end(), pt.values[1]) - h.y_values.begin());
+            h.values[iy * nx + ix] = pt.pi.mean;
+            h.marked[iy * nx + ix] = pt.KeepsEveryPole();
+            if (p == result.best) {
+                h.starred = static_cast<int>(iy * nx + ix);
             }
         }
         h.marked_legend = "red frame: every pole kept in every training run; * chosen point";

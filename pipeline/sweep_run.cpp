@@ -357,30 +357,35 @@ std::vector<std::size_t> ParetoFront(const std::vector<SweepPoint>& points) {
     return front;
 }
 
-/// Extends every axis whose edge holds the best point (when the value beyond is allowed and
-/// the grid stays <= 10000 points); returns the growth records (empty: nothing grew).
-std::vector<SweepGrowth> Grow(SweepOptions& opt, const SweepPoint& best, int round) {
+/// Extends every axis (or only `only_axis` when >= 0) whose edge holds the best point, when
+/// the value beyond is allowed and the grid stays <= 10000 points; returns the growth records
+/// (empty: nothing grew, `opt` unchanged).
+std::vector<SweepGrowth> Grow(SweepOptions& opt,
+                              const SweepPoint& best,
+                              int round,
+                              int only_axis = -1) {
+    SweepOptions next = opt;
     std::vector<SweepGrowth> grown;
-    for (std::size_t i = 0; i < opt.axes.size(); ++i) {
-        SweepAxis& axis = opt.axes[i];
+    for (std::size_t i = 0; i < next.axes.size(); ++i) {
+        SweepAxis& axis = next.axes[i];
         const std::size_t n = axis.values.size();
-        if (n < 2) {
+        if (n < 2 || (only_axis >= 0 && static_cast<std::size_t>(only_axis) != i)) {
             continue;  // a single value has no step to grow by
         }
         const double v = best.values[i];
         std::optional<double> added;
         if (v == axis.values.front()) {
-            const double next = detail::Snap(axis.values[0] - (axis.values[1] - axis.values[0]));
-            if (detail::AxisValueAllowed(opt, axis.name, next)) {
-                axis.values.insert(axis.values.begin(), next);
-                added = next;
+            const double value = detail::Snap(axis.values[0] - (axis.values[1] - axis.values[0]));
+            if (detail::AxisValueAllowed(next, axis.name, value)) {
+                axis.values.insert(axis.values.begin(), value);
+                added = value;
             }
         } else if (v == axis.values.back()) {
-            const double next =
+            const double value =
                 detail::Snap(axis.values[n - 1] + (axis.values[n - 1] - axis.values[n - 2]));
-            if (detail::AxisValueAllowed(opt, axis.name, next)) {
-                axis.values.push_back(next);
-                added = next;
+            if (detail::AxisValueAllowed(next, axis.name, value)) {
+                axis.values.push_back(value);
+                added = value;
             }
         }
         if (added) {
@@ -388,12 +393,13 @@ std::vector<SweepGrowth> Grow(SweepOptions& opt, const SweepPoint& best, int rou
         }
     }
     std::size_t total = 1;
-    for (const SweepAxis& a : opt.axes) {
+    for (const SweepAxis& a : next.axes) {
         total *= a.values.size();
     }
-    if (total > 10000) {
+    if (total > 10000 || grown.empty()) {
         return {};
     }
+    opt = std::move(next);
     return grown;
 }
 
@@ -455,6 +461,54 @@ std::vector<HeldOutRun> HeldOut(const Context& cx,
     return runs;
 }
 
+/// Coordinate descent over the axes' values: start at each axis's middle value; per axis in
+/// turn, score the line through the current best point along that axis, move to the best
+/// point scored so far (ChooseBest's rule), grow that axis while the best sits on its edge
+/// (opt.grow rounds in all); repeat passes until a pass leaves the best point unchanged.
+template <typename Evaluate, typename Unscored>
+void Descend(SweepOptions& opt,
+             SweepResult& result,
+             const Evaluate& evaluate,
+             const Unscored& unscored) {
+    constexpr int kMaxPasses = 20;
+    Point current;
+    for (const SweepAxis& axis : opt.axes) {
+        current.push_back(axis.values[(axis.values.size() - 1) / 2]);
+    }
+    evaluate(unscored({current}));
+    int rounds = 0;
+    for (int pass = 1; pass <= kMaxPasses; ++pass) {
+        const Point before = result.points[result.best].values;
+        for (std::size_t i = 0; i < opt.axes.size(); ++i) {
+            for (;;) {
+                current = result.points[result.best].values;
+                std::vector<Point> line;
+                for (const double v : opt.axes[i].values) {
+                    line.push_back(current);
+                    line.back()[i] = v;
+                }
+                evaluate(unscored(line));
+                if (rounds >= opt.grow) {
+                    break;
+                }
+                const std::vector<SweepGrowth> grown =
+                    Grow(opt, result.points[result.best], rounds + 1, static_cast<int>(i));
+                if (grown.empty()) {
+                    break;
+                }
+                ++rounds;
+                result.growth.insert(result.growth.end(), grown.begin(), grown.end());
+                evaluate({});  // re-list the points in the grown grid's order
+            }
+            result.path.push_back(
+                {pass, opt.axes[i].name, result.points[result.best].values, result.points.size()});
+        }
+        if (result.points[result.best].values == before) {
+            break;
+        }
+    }
+}
+
 }  // namespace
 
 SweepResult RunSweep(const SweepOptions& options, const core::ProgressFn& progress) {
@@ -485,29 +539,37 @@ SweepResult RunSweep(const SweepOptions& options, const core::ProgressFn& progre
     SweepOptions opt = options;  // axes grow
     std::map<Point, SweepPoint> scored;
     std::map<std::string, std::string> configs;  // per training run name
-    std::vector<Point> fresh = detail::GridPoints(opt.axes);
-    for (int round = 0;; ++round) {
-        for (auto& [p, pt] : TrainRound(cx, opt, fresh, progress, configs)) {
-            scored[p] = std::move(pt);
+    const auto evaluate = [&](const std::vector<Point>& fresh) {
+        if (!fresh.empty()) {
+            for (auto& [p, pt] : TrainRound(cx, opt, fresh, progress, configs)) {
+                scored[p] = std::move(pt);
+            }
         }
-        result.points.clear();
+        result.points.clear();  // the scored points in grid order (all of them for "grid")
         for (const Point& p : detail::GridPoints(opt.axes)) {
-            result.points.push_back(scored.at(p));
+            if (const auto it = scored.find(p); it != scored.end()) {
+                result.points.push_back(it->second);
+            }
         }
         ChooseBest(result);
-        if (round >= opt.grow) {
-            break;
-        }
-        const std::vector<SweepGrowth> grown = Grow(opt, result.points[result.best], round + 1);
-        if (grown.empty()) {
-            break;
-        }
-        result.growth.insert(result.growth.end(), grown.begin(), grown.end());
-        fresh.clear();
-        for (const Point& p : detail::GridPoints(opt.axes)) {
-            if (scored.count(p) == 0) {
-                fresh.push_back(p);
+    };
+    const auto unscored = [&](std::vector<Point> points) {
+        points.erase(std::remove_if(points.begin(), points.end(),
+                                    [&](const Point& p) { return scored.count(p) != 0; }),
+                     points.end());
+        return points;
+    };
+    if (opt.search == "descent") {
+        Descend(opt, result, evaluate, unscored);
+    } else {
+        evaluate(detail::GridPoints(opt.axes));
+        for (int round = 1; round <= opt.grow; ++round) {
+            const std::vector<SweepGrowth> grown = Grow(opt, result.points[result.best], round);
+            if (grown.empty()) {
+                break;
             }
+            result.growth.insert(result.growth.end(), grown.begin(), grown.end());
+            evaluate(unscored(detail::GridPoints(opt.axes)));
         }
     }
     result.pareto = ParetoFront(result.points);

@@ -43,6 +43,7 @@ const FlagNames kFlags = {{"axes", "--set"},
                           {"test_seeds", "--test-seeds"},
                           {"test_courses", "--test-courses"},
                           {"grow", "--grow"},
+                          {"search", "--search"},
                           {"tests", "--tests"},
                           {"courses_dir", "--courses-dir"},
                           {"rig_path", "--rig"},
@@ -124,7 +125,8 @@ void AddSweepCommand(CLI::App& app, CommonOptions& common) {
         ->capture_default_str();
     sub->add_option("--train-courses", flags->train_courses, "the same as --courses")
         ->excludes(sub->get_option("--courses"));
-    sub->add_option("--filter", opt.filter, "pipeline to tune: cas, cas_trail, cas_terrain or any casmap bench pipeline")
+    sub->add_option("--filter", opt.filter,
+                    "pipeline to tune: cas, cas_trail, cas_terrain or any casmap bench pipeline")
         ->capture_default_str();
     sub->add_option("--train-seeds", flags->train_seeds,
                     "training seeds, e.g. 1-2 or 1,5 (default: --seed)");
@@ -132,6 +134,9 @@ void AddSweepCommand(CLI::App& app, CommonOptions& common) {
                     "held-out seeds scoring the chosen point (default: the training seeds)");
     sub->add_option("--test-courses", flags->test_courses,
                     "held-out courses (default: the training courses)");
+    sub->add_option("--search", opt.search,
+                    "grid (every point) or descent (coordinate descent over the axes' values)")
+        ->capture_default_str();
     sub->add_option("--grow", opt.grow,
                     "growth rounds: extend an axis while the best point sits on its edge (0..20)")
         ->capture_default_str();

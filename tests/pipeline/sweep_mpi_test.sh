@@ -25,4 +25,18 @@ for d in (a, b):
 assert a == b, "sweep.json differs between 1 process and 2 ranks"
 assert a["held_out"]["runs"], "no held-out runs"
 PY
+# Coordinate descent decides its next line from the scores: the same path on 2 ranks.
+"$casmap" sweep $args --search descent --out "$work/d1" > /dev/null
+OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader \
+    "$mpirun" --oversubscribe -n 2 "$casmap" sweep $args --search descent --out "$work/d2" \
+    > /dev/null
+/usr/bin/python3 - "$work/d1/sweep.json" "$work/d2/sweep.json" <<'PY'
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+for d in (a, b):
+    d.pop("elapsed_s", None)
+    d.pop("threads", None)
+assert a == b, "descent sweep.json differs between 1 process and 2 ranks"
+assert a["path"], "no descent path"
+PY
 echo "sweep: 1 process and 2 ranks agree"

@@ -217,6 +217,36 @@ TEST(RunSweep, GrowsChoosesOnTrainingAndScoresHeldOut) {
     EXPECT_EQ(SweepJson(one), SweepJson(r));
 }
 
+// Coordinate descent scores a subset of the grid, each point exactly as the grid sweep does,
+// and its best point is the rule's best among the points it scored.
+TEST(RunSweep, DescentScoresASubsetLikeTheGrid) {
+    SweepOptions options;
+    options.axes = {{"A", {10.0, 20.0, 30.0, 40.0}}, {"h_sum_min", {6.0, 8.0, 10.0}}};
+    options.courses = {4};
+    options.threads = 2;
+    const SweepResult grid = RunSweep(options);
+    options.search = "descent";
+    const SweepResult descent = RunSweep(options);
+    ASSERT_FALSE(descent.path.empty());
+    EXPECT_EQ(descent.path.front().pass, 1);
+    EXPECT_EQ(descent.path.back().best, descent.points[descent.best].values);
+    EXPECT_LT(descent.points.size(), grid.points.size());
+    for (const SweepPoint& p : descent.points) {
+        const auto same = std::find_if(grid.points.begin(), grid.points.end(),
+                                       [&](const SweepPoint& g) { return g.values == p.values; });
+        ASSERT_NE(same, grid.points.end());
+        EXPECT_EQ(same->pi.mean, p.pi.mean);
+        EXPECT_EQ(same->poles_kept, p.poles_kept);
+        EXPECT_EQ(same->spikes_total, p.spikes_total);
+        if (p.KeepsEveryPole() && descent.best_keeps_every_pole) {
+            EXPECT_LE(descent.points[descent.best].pi.mean, p.pi.mean);
+        }
+    }
+    SweepOptions bad;
+    bad.search = "random";
+    EXPECT_NE(ErrorOf([&] { bad.Validate(); }).find("search = random"), std::string::npos);
+}
+
 // A variant's own parameter is swept with that variant (cas_trail's support_min changes PI).
 TEST(RunSweep, SweepsAVariantsParameters) {
     SweepOptions options;
