@@ -72,6 +72,28 @@ void BenchOptions::Validate() const {
         check.SetAssignment(assignment);
     }
     check.Validate();
+    for (const auto& [pipeline, settings] : PipelineFilterSettings()) {
+        mapper::FilterParams one;
+        for (const std::string& assignment : settings) {
+            one.SetAssignment(assignment);
+        }
+        one.Validate();
+    }
+}
+
+std::map<std::string, std::vector<std::string>> BenchOptions::PipelineFilterSettings() const {
+    std::map<std::string, std::vector<std::string>> out;
+    if (preset.empty()) {
+        return out;
+    }
+    const Preset loaded = LoadPreset(preset, "preset");
+    for (const auto& [pipeline, settings] : loaded.pipeline_settings) {
+        std::vector<std::string>& all = out[pipeline];
+        all = loaded.settings;
+        all.insert(all.end(), settings.begin(), settings.end());
+        all.insert(all.end(), filter_settings.begin(), filter_settings.end());
+    }
+    return out;
 }
 
 std::vector<std::string> BenchOptions::EffectiveFilterSettings() const {
@@ -126,6 +148,8 @@ BenchResult RunBench(const BenchOptions& options, const core::ProgressFn& progre
     const std::vector<std::string> tests =
         courses.empty() ? std::vector<std::string>{} : SortedTests(options.tests);
     const std::vector<std::string> filter_settings = options.EffectiveFilterSettings();
+    const std::map<std::string, std::vector<std::string>> pipeline_settings =
+        options.PipelineFilterSettings();
     const int threads = core::ResolveThreads(options.threads);
 
     // The table trajectories depend on the test only (the rig does not see the scene).
@@ -198,15 +222,32 @@ BenchResult RunBench(const BenchOptions& options, const core::ProgressFn& progre
                 setup, 3, scene_run ? mapper::Unknown::kNaN : mapper::Unknown::kZero,
                 filter_settings);
             const MappedBenchRun run = MapBenchRun(setup, course, sim, 3, params.cas.unknown);
+            std::map<std::string, mapper::FilterParams> own;  // preset `pipelines:` sections
+            std::string own_yaml;
+            for (const auto& [pipeline, assignments] : pipeline_settings) {
+                if (std::find(options.pipelines.begin(), options.pipelines.end(), pipeline) ==
+                    options.pipelines.end()) {
+                    continue;  // a section for a pipeline this bench does not score
+                }
+                own[pipeline] = SetupFilterParams(setup, 3, params.cas.unknown, assignments);
+                std::string list;
+                for (const std::string& s : assignments) {
+                    list += (list.empty() ? "" : ", ") + s;
+                }
+                own_yaml += "  " + pipeline + ": [" + list + "]\n";
+            }
             BenchRunRecord record;
             record.has_sheet = keep_maps;
             record.run = ScorePipelines(run, &sim, course, params, options.pipelines,
-                                        keep_maps ? &record.sheet : nullptr);
+                                        keep_maps ? &record.sheet : nullptr, own);
             record.run.scene = scene_run ? course.path : std::string();
             record.name = BenchRunName(record.run);
             record.config_yaml = run.config_yaml + FilterParamsYaml(params);
             if (!options.preset.empty()) {
                 record.config_yaml += "preset: " + options.preset + "\n";
+            }
+            if (!own_yaml.empty()) {
+                record.config_yaml += "pipeline_filter_settings:\n" + own_yaml;
             }
             return "R" + EncodeBenchRun(record);
         } catch (const std::exception& e) {

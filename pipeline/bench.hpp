@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,9 @@ struct BenchOptions {
     void Validate() const;
     /// The preset's settings (if any) followed by filter_settings: what every run applies.
     [[nodiscard]] std::vector<std::string> EffectiveFilterSettings() const;
+    /// Per pipeline with a `pipelines:` section in the preset: the preset's settings, that
+    /// section's, then filter_settings (--set overrides the preset). Empty without a preset.
+    [[nodiscard]] std::map<std::string, std::vector<std::string>> PipelineFilterSettings() const;
 };
 
 struct BenchResult {

@@ -5,6 +5,7 @@
 // and mapped run per course x test, and the scoring of the five filters against the truth.
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -122,14 +123,17 @@ struct MappedBenchRun {
 /// course's truth over the paper's region, Eq. 11's denominator being `run`'s map (the plain
 /// raw map). Pipelines with another mapper mode or a scan pre-filter map `sim`'s scans again
 /// (same beams, no new simulation); `sim` may be null when none does (InputError otherwise).
-/// The map filters use `params` (unknown convention included). Fills `sheet` (raw, truth,
-/// the paper's filtered maps present, CAS classes) when non-null.
+/// The map filters use `params` (unknown convention included), or `own.at(name)` for a
+/// pipeline listed there (a preset's `pipelines:` section); Table II classes and the
+/// fill-error cells always come from the paper CAS with `params`. Fills `sheet` (raw, truth,
+/// every pipeline's map, CAS classes) when non-null.
 [[nodiscard]] BenchRun ScorePipelines(const MappedBenchRun& run,
                                       const SimulatedRun* sim,
                                       const Course& course,
                                       const mapper::FilterParams& params,
                                       const std::vector<std::string>& pipelines,
-                                      SheetMaps* sheet);
+                                      SheetMaps* sheet,
+                                      const std::map<std::string, mapper::FilterParams>& own = {});
 
 /// ScorePipelines with the paper's five filters (no re-mapping).
 [[nodiscard]] BenchRun ScoreRun(const MappedBenchRun& run,

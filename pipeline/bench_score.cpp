@@ -93,7 +93,8 @@ BenchRun ScorePipelines(const MappedBenchRun& run,
                         const Course& course,
                         const mapper::FilterParams& params,
                         const std::vector<std::string>& pipelines,
-                        SheetMaps* sheet) {
+                        SheetMaps* sheet,
+                        const std::map<std::string, mapper::FilterParams>& own) {
     CheckPipelines(pipelines);
     const core::MapF& raw = run.mapped.elevation;
     const core::MapF& c = run.mapped.certainty;
@@ -143,13 +144,16 @@ BenchRun ScorePipelines(const MappedBenchRun& run,
         const PipelineSpec& spec = FindPipeline(name, "pipelines");
         const auto it = maps.find({spec.mode, spec.prefilter});
         const MappedRun& map = it != maps.end() ? it->second : run.mapped;
+        const auto own_params = own.find(name);
+        const bool shared = own_params == own.end();
         mapper::FilterResult result;
         if (!spec.filter) {
             result.elevation = map.elevation;
-        } else if (&map == &run.mapped && *spec.filter == mapper::FilterMethod::kCas) {
+        } else if (&map == &run.mapped && *spec.filter == mapper::FilterMethod::kCas && shared) {
             result = cas;
         } else {
-            result = mapper::RunFilter(*spec.filter, map.elevation, map.certainty, params);
+            result = mapper::RunFilter(*spec.filter, map.elevation, map.certainty,
+                                       shared ? params : own_params->second);
         }
         const mapper::FilterMetrics m = mapper::EvaluateFilter(result, raw, course.truth, region);
         FilterScore& score = out.filters[name];

@@ -5,6 +5,7 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/preset_file.hpp"
 #include "casmap/mapper/filter_params.hpp"
+#include "casmap/pipeline/bench_pipelines.hpp"
 #include "casmap/pipeline/data_dir.hpp"
 
 namespace casmap::pipeline {
@@ -68,6 +69,31 @@ Preset LoadPreset(const std::string& name, const std::string& field) {
                                  error.rule().empty() ? error.what() : error.rule());
         }
         preset.settings.push_back(e.name + "=" + e.value);
+    }
+    for (std::size_t i = 0; i < file.pipelines.size(); ++i) {
+        const auto& [pipeline, entries] = file.pipelines[i];
+        const std::string section = "pipelines." + pipeline;
+        try {
+            (void)FindPipeline(pipeline, section);
+        } catch (const InputError& error) {
+            throw MakeInputError(file.pipeline_where[i], section, pipeline, error.rule());
+        }
+        std::vector<std::string>& out = preset.pipeline_settings[pipeline];
+        mapper::FilterParams one = check;
+        for (const io::PresetEntry& e : entries) {
+            if (e.name == "unknown") {
+                throw MakeInputError(e.where, section + ".unknown", e.value,
+                                     "the unknown-cell convention is the run's, not one "
+                                     "pipeline's (set it under set:)");
+            }
+            try {
+                one.Set(e.name, e.value);
+            } catch (const InputError& error) {
+                throw MakeInputError(e.where, section + "." + e.name, e.value,
+                                     error.rule().empty() ? error.what() : error.rule());
+            }
+            out.push_back(e.name + "=" + e.value);
+        }
     }
     return preset;
 }

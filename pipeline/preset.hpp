@@ -6,6 +6,7 @@
 // apply after the values a run derives (cell, speed, scan period, a) and before `--set`.
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,9 @@ struct Preset {
     std::string path;                   // the file read
     std::string description;            // the file's description (may be empty)
     std::vector<std::string> settings;  // NAME=VALUE, in file order (FilterParams::SetAssignment)
+    /// `pipelines:` sections: per registered pipeline name, NAME=VALUE applied after
+    /// `settings` for that pipeline only (never `unknown`: the run decides it).
+    std::map<std::string, std::vector<std::string>> pipeline_settings;
 };
 
 /// DataDir() / "config" / "presets".
@@ -27,7 +31,8 @@ struct Preset {
 /// Loads `name` (a preset name: [A-Za-z0-9_-]+, from PresetsDir()) or a file path (anything
 /// with a '/' or ending in .yaml). Every value is checked as `--set` would check it. Throws
 /// InputError naming `field` for an unknown name (listing the presets that exist), and the
-/// file:line:col plus `set.<NAME>` for a bad entry.
+/// file:line:col plus `set.<NAME>` / `pipelines.<P>[.<NAME>]` for a bad entry or an unknown
+/// pipeline name.
 [[nodiscard]] Preset LoadPreset(const std::string& name, const std::string& field = "--preset");
 
 }  // namespace casmap::pipeline

@@ -136,6 +136,17 @@ TEST(Presets, AFileLoadsInOrderAndSetOverridesIt) {
     EXPECT_EQ(params.cas.gs_mode, mapper::GsMode::kVariance);
     const fs::path empty = WriteFile("casmap_preset_empty.yaml", "set: {}\n");
     EXPECT_TRUE(LoadPreset(empty.string()).settings.empty());
+    EXPECT_TRUE(LoadPreset(empty.string()).pipeline_settings.empty());
+    // A section for one pipeline only.
+    const fs::path own = WriteFile("casmap_preset_own.yaml",
+                                   "set:\n  h_sum_min: 8\npipelines:\n  cas_trail:\n"
+                                   "    A: 25\n    support_min: 9\n  median: {window: 7}\n");
+    const Preset q = LoadPreset(own.string());
+    EXPECT_EQ(q.settings, (std::vector<std::string>{"h_sum_min=8"}));
+    ASSERT_EQ(q.pipeline_settings.size(), 2U);
+    EXPECT_EQ(q.pipeline_settings.at("cas_trail"),
+              (std::vector<std::string>{"A=25", "support_min=9"}));
+    EXPECT_EQ(q.pipeline_settings.at("median"), (std::vector<std::string>{"window=7"}));
 }
 
 TEST(Presets, BadFilesNameTheFileAndField) {
@@ -152,6 +163,10 @@ TEST(Presets, BadFilesNameTheFileAndField) {
         {"sets:\n  A: 1\n", "", "sets"},
         {"description: x\n", "set", "required"},
         {"set: 5\n", "set", "mapping"},
+        {"set: {}\npipelines:\n  bogus: {A: 1}\n", "pipelines.bogus", ":3:3"},
+        {"set: {}\npipelines:\n  cas: {unknown: nan}\n", "pipelines.cas.unknown", "run's"},
+        {"set: {}\npipelines:\n  cas_trail: {A: -1}\n", "pipelines.cas_trail.A", "-1"},
+        {"set: {}\npipelines: [1]\n", "pipelines", "mapping"},
     };
     for (std::size_t i = 0; i < cases.size(); ++i) {
         const fs::path file =

@@ -264,6 +264,47 @@ TEST(BenchOptions, PipelinesScenesAndPresetsAreValidated) {
     EXPECT_EQ(settings.back(), "A=30");  // --set after the preset
 }
 
+// A preset's `pipelines:` section tunes one pipeline only: the others keep the shared values,
+// the tuned one equals a bench where the whole run had those values; --set overrides both.
+TEST(RunBench, PresetPipelineSectionsApplyToTheirPipelineOnly) {
+    const std::filesystem::path file =
+        std::filesystem::path(testing::TempDir()) / "casmap_bench_own_preset.yaml";
+    std::ofstream(file) << "set: {}\npipelines:\n  cas_trail: {A: 25, support_min: 9}\n"
+                           "  kalman_median: {window: 7}\n";
+    BenchOptions options;
+    options.courses = {4};
+    options.tests = {"T"};
+    options.sheets = false;
+    options.threads = 2;
+    options.pipelines = {"cas", "cas_trail", "median", "kalman_median"};
+    const BenchResult plain = RunBench(options);
+    options.preset = file.string();
+    const BenchResult own = RunBench(options);
+    BenchOptions all = options;
+    all.preset.clear();
+    all.filter_settings = {"A=25", "support_min=9", "window=7"};
+    const BenchResult global = RunBench(all);
+    const auto pi = [](const BenchResult& r, const std::string& name) {
+        return r.runs[0].filters.at(name).pi;
+    };
+    EXPECT_EQ(pi(own, "cas"), pi(plain, "cas"));
+    EXPECT_EQ(pi(own, "median"), pi(plain, "median"));
+    EXPECT_EQ(pi(own, "cas_trail"), pi(global, "cas_trail"));
+    EXPECT_EQ(pi(own, "kalman_median"), pi(global, "kalman_median"));
+    EXPECT_NE(pi(own, "cas_trail"), pi(plain, "cas_trail"));
+    EXPECT_NE(pi(own, "kalman_median"), pi(plain, "kalman_median"));
+    EXPECT_EQ(own.runs[0].cas_classes.all.removed_pct, plain.runs[0].cas_classes.all.removed_pct);
+    EXPECT_NE(own.run_configs[0].find("pipeline_filter_settings:\n  cas_trail: [A=25, "
+                                      "support_min=9]"),
+              std::string::npos)
+        << own.run_configs[0];
+    // --set comes last for every pipeline, sections included.
+    options.filter_settings = {"A=25", "support_min=9", "window=7"};
+    const BenchResult both = RunBench(options);
+    EXPECT_EQ(pi(both, "cas"), pi(global, "cas"));
+    EXPECT_EQ(pi(both, "cas_trail"), pi(global, "cas_trail"));
+}
+
 // The paper preset gives the defaults' effective parameters, byte for byte.
 TEST(BenchOptions, PaperPresetEqualsTheDefaults) {
     BenchOptions o;
