@@ -380,12 +380,23 @@ void ResetOutput(const core::MapF& elevation, int k, FilterResult& out) {
         std::memcpy(out.elevation.data.data() + a, elevation.data.data() + a, n * sizeof(float));
         std::memset(out.classes.data.data() + a, border, n);
     };
+    float* y = out.elevation.data.data();
+    std::uint8_t* cls = out.classes.data.data();
+    const float* h = elevation.data.data();
     for (int i = 0; i < rows; ++i) {
         if (i < k || i >= rows - k || cols <= 2 * k) {
             copy(i, 0, cols);
         } else {
-            copy(i, 0, k);
-            copy(i, cols - k, cols);
+            // k cells at each end: element copies, not two library calls per row.
+            const std::size_t row = static_cast<std::size_t>(i) * static_cast<std::size_t>(cols);
+            for (int j = 0; j < k; ++j) {
+                const std::size_t a = row + static_cast<std::size_t>(j);
+                const std::size_t b = row + static_cast<std::size_t>(cols - 1 - j);
+                y[a] = h[a];
+                y[b] = h[b];
+                cls[a] = border;
+                cls[b] = border;
+            }
         }
     }
 }
