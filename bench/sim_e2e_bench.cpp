@@ -13,12 +13,12 @@
 // scene variant (0 = course 4; 1/2/3 = course 4 on a heightfield floor of 10/5/2.5 cm cells;
 // 4/5 = course 4 plus 40/160 extra boxes and poles in the course region).
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 
 #include <ctime>
 #include <filesystem>
 #include <span>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "casmap/core/scene.hpp"
@@ -88,12 +88,23 @@ void AddClutter(Scene& scene, int count) {
 Scene LoadVariant(int variant) {
     Scene scene = casmap::io::LoadScene(Course4Path());
     switch (variant) {
-        case 1: AddTerrainFloor(scene, 0.10); break;
-        case 2: AddTerrainFloor(scene, 0.05); break;
-        case 3: AddTerrainFloor(scene, 0.025); break;
-        case 4: AddClutter(scene, 40); break;
-        case 5: AddClutter(scene, 160); break;
-        default: break;
+        case 1:
+            AddTerrainFloor(scene, 0.10);
+            break;
+        case 2:
+            AddTerrainFloor(scene, 0.05);
+            break;
+        case 3:
+            AddTerrainFloor(scene, 0.025);
+            break;
+        case 4:
+            AddClutter(scene, 40);
+            break;
+        case 5:
+            AddClutter(scene, 160);
+            break;
+        default:
+            break;
     }
     return scene;
 }
@@ -124,10 +135,10 @@ void TraceOnly(const casmap::sim::World& world,
         for (std::size_t i = 0; i < model.BeamCount(); ++i) {
             const auto frame = model.PulseBasis(k, i, *poses.PoseAt(scan.BeamTime(i)));
             ScratchArray<casmap::sim::Ray, kMaxSubrays> rays;
-            model.ForEachSubray(frame, [&](std::size_t, const Eigen::Vector3d& o,
-                                           const Eigen::Vector3d& d) {
-                rays.EmplaceBack(o.cast<float>(), d.cast<float>(), tmax);
-            });
+            model.ForEachSubray(
+                frame, [&](std::size_t, const Eigen::Vector3d& o, const Eigen::Vector3d& d) {
+                    rays.EmplaceBack(o.cast<float>(), d.cast<float>(), tmax);
+                });
             ScratchArray<casmap::sim::Hit, kMaxSubrays> hits;
             hits.Construct(model.SubrayCount());
             world.CastPacket(std::as_const(rays).span(), hits.span());
@@ -209,6 +220,29 @@ BENCHMARK(BM_SimulateEndToEnd)
     ->Args({0, 100, 4})
     ->Args({0, 100, 5})
     ->Iterations(1)
+    ->MeasureProcessCPUTime()
+    ->Unit(benchmark::kMillisecond);
+
+// The Bullet table alone (the rig stage), T or TRP at `speed` mm/s: simulated s per CPU s.
+void BM_TableRig(benchmark::State& state) {
+    casmap::pipeline::SimFlags flags;
+    flags.scene_path = Course4Path();
+    flags.motion = state.range(0) == 1 ? "TRP" : "T";
+    flags.speed_m_s = static_cast<double>(state.range(1)) / 1000.0;
+    const casmap::pipeline::SimSetup setup = casmap::pipeline::ResolveSimSetup(flags);
+    const Scene scene;
+    double sim_s = 0.0;
+    for (auto _ : state) {
+        const casmap::core::Trajectory poses = casmap::pipeline::RigTrajectory(setup, scene);
+        sim_s += poses.EndTime() - poses.StartTime();
+        benchmark::DoNotOptimize(poses);
+    }
+    state.counters["realtime_factor"] = benchmark::Counter(sim_s, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_TableRig)
+    ->ArgNames({"trp", "speed_mm_s"})
+    ->Args({0, 25})
+    ->Args({1, 25})
     ->MeasureProcessCPUTime()
     ->Unit(benchmark::kMillisecond);
 

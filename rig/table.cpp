@@ -1,7 +1,9 @@
-// rig::Table in Bullet: rigid bodies joined by a slider and two hinges, driven by joint motors.
+// rig::Table in Bullet: a multibody (carriage, yoke, plate) in reduced coordinates, driven by
+// servos at the physics rate.
 #include "casmap/rig/table.hpp"
 
-#include <btBulletDynamicsCommon.h>
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <LinearMath/btAlignedObjectArray.h>
 
 #include <cmath>
 #include <initializer_list>
@@ -18,9 +20,6 @@ constexpr double kGravity = 9.81;
 constexpr double kCarriageKg = 10.0;
 constexpr double kYokeKg = 3.0;
 constexpr double kPlateKg = 6.0;
-// Rigid motors: far above any torque the motion needs, so they track the command exactly.
-constexpr double kMaxMotorForceN = 1e5;
-constexpr double kMaxMotorTorqueNm = 1e4;
 
 btVector3 ToBt(const Eigen::Vector3d& v) {
     return {static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()),
@@ -29,196 +28,144 @@ btVector3 ToBt(const Eigen::Vector3d& v) {
 
 Eigen::Vector3d FromBt(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
 
-btTransform ToBt(const core::Pose& pose) {
-    const Eigen::Quaterniond& q = pose.rotation;
-    return btTransform(btQuaternion(static_cast<btScalar>(q.x()), static_cast<btScalar>(q.y()),
-                                    static_cast<btScalar>(q.z()), static_cast<btScalar>(q.w())),
-                       ToBt(pose.translation));
-}
-
 core::Pose FromBt(const btTransform& t) {
     const btQuaternion q = t.getRotation();
     return core::Pose{FromBt(t.getOrigin()),
                       Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).normalized()};
 }
 
-Eigen::Matrix3d Basis(const btTransform& t) {
-    Eigen::Matrix3d m;
-    for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) {
-            m(r, c) = t.getBasis()[r][c];
-        }
-    }
-    return m;
+// Half extents (m) of the parts' boxes, for their inertias.
+const btVector3 kCarriageHalf(0.20F, 0.15F, 0.05F);
+const btVector3 kYokeHalf(0.10F, 0.10F, 0.10F);
+const btVector3 kPlateHalf(0.08F, 0.08F, 0.09F);
+
+// Link indices of the multibody (the base is fixed at the pitch-axis origin).
+constexpr int kCarriage = 0;
+constexpr int kYoke = 1;
+constexpr int kPlate = 2;
+
+btVector3 BoxInertia(double mass_kg, const btVector3& half) {
+    const auto m = static_cast<btScalar>(mass_kg / 3.0);
+    return {m * (half.y() * half.y() + half.z() * half.z()),
+            m * (half.x() * half.x() + half.z() * half.z()),
+            m * (half.x() * half.x() + half.y() * half.y())};
 }
 
-btTransform Frame(const Eigen::Vector3d& origin, const Eigen::Vector3d& axis, double angle_rad) {
-    const Eigen::Quaterniond q(Eigen::AngleAxisd(angle_rad, axis));
-    return ToBt(core::Pose{origin, q});
-}
-
-/// Bullet world and bodies; removes everything from the world before freeing it.
-class TableBodies {
+/// The table as one Bullet multibody in reduced coordinates (Featherstone): a prismatic
+/// carriage along world x, the yoke on a revolute joint about the carriage's y (pitch), the
+/// plate on a revolute joint about the yoke's x (roll). Joint coordinates are casmap's joint
+/// values (Bullet turns a link by +q about its axis), so the joints cannot drift apart and no
+/// collision detection or iterative joint solver runs. Nothing is allocated per step.
+class TableBody {
 public:
-    TableBodies(const TableGeometry& geometry, const TableJoints& start) {
-        world_.setGravity(btVector3(0, 0, static_cast<btScalar>(-kGravity)));
-        world_.getSolverInfo().m_numIterations =
-            20;  // keeps the joint frames within microns (Eq. 2 test)
-        const core::Pose carriage{
-            geometry.pitch_axis_origin_m + Eigen::Vector3d(start.linear_m, 0.0, 0.0),
-            Eigen::Quaterniond::Identity()};
-        const core::Pose yoke{
-            carriage.translation,
-            Eigen::Quaterniond(Eigen::AngleAxisd(start.pitch_rad, Eigen::Vector3d::UnitY()))};
+    TableBody(const TableGeometry& geometry, const TableJoints& start, const TableJoints& rate)
+        : body_(3, 1.0F, btVector3(1, 1, 1), /*fixedBase=*/true, /*canSleep=*/false) {
+        const btQuaternion none = btQuaternion::getIdentity();
+        const btVector3 zero(0, 0, 0);
+        body_.setBaseWorldTransform(btTransform(none, ToBt(geometry.pitch_axis_origin_m)));
+        body_.setupPrismatic(kCarriage, static_cast<btScalar>(kCarriageKg),
+                             BoxInertia(kCarriageKg, kCarriageHalf), -1, none, btVector3(1, 0, 0),
+                             zero, zero, true);
+        body_.setupRevolute(kYoke, static_cast<btScalar>(kYokeKg), BoxInertia(kYokeKg, kYokeHalf),
+                            kCarriage, none, btVector3(0, 1, 0), zero, zero, true);
         // The plate's centre of mass is the scanner origin: its frame is the sensor frame.
-        const core::Pose plate = TableForwardKinematics(geometry, start);
-        carriage_ = AddBody(carriage_shape_, kCarriageKg, carriage);
-        yoke_ = AddBody(yoke_shape_, kYokeKg, yoke);
-        plate_ = AddBody(plate_shape_, kPlateKg, plate);
-
-        slider_ =
-            std::make_unique<btSliderConstraint>(*carriage_, btTransform::getIdentity(), true);
-        slider_->setPoweredLinMotor(true);
-        slider_->setMaxLinMotorForce(static_cast<btScalar>(kMaxMotorForceN));
-        // Hinge axes are the frames' z: pitch about y (Rx(-90) maps z to y), roll about x
-        // (Ry(90) maps z to x), both at zero joint angle.
-        const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
-        pitch_ = std::make_unique<btHingeConstraint>(
-            *carriage_, *yoke_, Frame(zero, Eigen::Vector3d::UnitX(), -std::numbers::pi / 2),
-            Frame(zero, Eigen::Vector3d::UnitX(), -std::numbers::pi / 2));
-        roll_ = std::make_unique<btHingeConstraint>(
-            *yoke_, *plate_,
-            Frame(geometry.pitch_to_roll_m, Eigen::Vector3d::UnitY(), std::numbers::pi / 2),
-            Frame(Eigen::Vector3d(0.0, 0.0, -geometry.roll_to_sensor_m), Eigen::Vector3d::UnitY(),
-                  std::numbers::pi / 2));
-        world_.addConstraint(slider_.get(), true);
-        world_.addConstraint(pitch_.get(), true);
-        world_.addConstraint(roll_.get(), true);
-    }
-
-    ~TableBodies() {
-        world_.removeConstraint(roll_.get());
-        world_.removeConstraint(pitch_.get());
-        world_.removeConstraint(slider_.get());
-        for (btRigidBody* body : {plate_.get(), yoke_.get(), carriage_.get()}) {
-            world_.removeRigidBody(body);
+        body_.setupRevolute(
+            kPlate, static_cast<btScalar>(kPlateKg), BoxInertia(kPlateKg, kPlateHalf), kYoke, none,
+            btVector3(1, 0, 0), ToBt(geometry.pitch_to_roll_m),
+            btVector3(0, 0, static_cast<btScalar>(geometry.roll_to_sensor_m)), true);
+        body_.finalizeMultiDof();
+        body_.setLinearDamping(0);
+        body_.setAngularDamping(0);
+        body_.setHasSelfCollision(false);
+        const double q[3] = {start.linear_m, start.pitch_rad, start.roll_rad};
+        const double v[3] = {rate.linear_m, rate.pitch_rad, rate.roll_rad};
+        for (int i = 0; i < 3; ++i) {
+            body_.setJointPos(i, static_cast<btScalar>(q[i]));
+            body_.setJointVel(i, static_cast<btScalar>(v[i]));
         }
+        world_to_local_.resize(4);
+        local_origin_.resize(4);
+        UpdateTransforms();
     }
-    TableBodies(const TableBodies&) = delete;
-    TableBodies& operator=(const TableBodies&) = delete;
 
-    btDiscreteDynamicsWorld& world() { return world_; }
-    btRigidBody& carriage() { return *carriage_; }
-    btRigidBody& yoke() { return *yoke_; }
-    btRigidBody& plate() { return *plate_; }
-    btSliderConstraint& slider() { return *slider_; }
-    btHingeConstraint& pitch() { return *pitch_; }
-    btHingeConstraint& roll() { return *roll_; }
+    btMultiBody& body() { return body_; }
+    [[nodiscard]] const btTransform& LinkTransform(int link) const {
+        return body_.getLink(link).m_cachedWorldTransform;
+    }
+    void UpdateTransforms() { body_.forwardKinematics(world_to_local_, local_origin_); }
+
+    /// Bullet's articulated-body step of the velocities under gravity and the joint torques
+    /// added since the last clearForcesAndTorques().
+    void IntegrateForces(double dt) {
+        for (int i = 0; i < 3; ++i) {
+            body_.addLinkForce(
+                i, btVector3(0, 0, static_cast<btScalar>(-kGravity) * body_.getLinkMass(i)));
+        }
+        body_.computeAccelerationsArticulatedBodyAlgorithmMultiDof(
+            static_cast<btScalar>(dt), scratch_r_, scratch_v_, scratch_m_, false, false, false);
+        body_.clearForcesAndTorques();
+    }
+
+    /// The impulse along joint `link` alone that sets its rate to `target` (a stiff servo on
+    /// one joint; it moves the others through the coupling): one exact constraint row.
+    void ServoImpulse(int link, double target) {
+        btScalar unit[9] = {};
+        unit[6 + link] = 1;
+        btScalar response[9] = {};
+        body_.calcAccelerationDeltasMultiDof(unit, response, scratch_r_, scratch_v_);
+        const btScalar lambda =
+            (static_cast<btScalar>(target) - body_.getJointVel(link)) / response[6 + link];
+        body_.applyDeltaVeeMultiDof(response, lambda);
+    }
 
 private:
-    std::unique_ptr<btRigidBody> AddBody(btCollisionShape& shape,
-                                         double mass_kg,
-                                         const core::Pose& pose) {
-        btVector3 inertia(0, 0, 0);
-        shape.calculateLocalInertia(static_cast<btScalar>(mass_kg), inertia);
-        btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(mass_kg), nullptr,
-                                                      &shape, inertia);
-        info.m_startWorldTransform = ToBt(pose);
-        auto body = std::make_unique<btRigidBody>(info);
-        body->setActivationState(DISABLE_DEACTIVATION);
-        body->setDamping(0, 0);
-        // The table's parts never collide with anything: group 1, mask 0.
-        world_.addRigidBody(body.get(), 1, 0);
-        return body;
-    }
-
-    btDefaultCollisionConfiguration collision_config_;
-    btCollisionDispatcher dispatcher_{&collision_config_};
-    btDbvtBroadphase broadphase_;
-    btSequentialImpulseConstraintSolver solver_;
-    btDiscreteDynamicsWorld world_{&dispatcher_, &broadphase_, &solver_, &collision_config_};
-    btBoxShape carriage_shape_{btVector3(0.20F, 0.15F, 0.05F)};
-    btBoxShape yoke_shape_{btVector3(0.10F, 0.10F, 0.10F)};
-    btBoxShape plate_shape_{btVector3(0.08F, 0.08F, 0.09F)};
-    std::unique_ptr<btRigidBody> carriage_;
-    std::unique_ptr<btRigidBody> yoke_;
-    std::unique_ptr<btRigidBody> plate_;
-    std::unique_ptr<btSliderConstraint> slider_;
-    std::unique_ptr<btHingeConstraint> pitch_;
-    std::unique_ptr<btHingeConstraint> roll_;
+    btMultiBody body_;
+    btAlignedObjectArray<btQuaternion> world_to_local_;
+    btAlignedObjectArray<btVector3> local_origin_;
+    btAlignedObjectArray<btScalar> scratch_r_;
+    btAlignedObjectArray<btVector3> scratch_v_;
+    btAlignedObjectArray<btMatrix3x3> scratch_m_;
 };
 
-/// Joint values and rates read from the bodies (not from Bullet's constraint bookkeeping).
-void MeasureJoints(TableBodies& bodies,
-                   const TableGeometry& geometry,
-                   TableJoints& value,
-                   TableJoints& rate) {
-    const btTransform& c = bodies.carriage().getCenterOfMassTransform();
-    const btTransform& y = bodies.yoke().getCenterOfMassTransform();
-    const btTransform& p = bodies.plate().getCenterOfMassTransform();
-    const Eigen::Matrix3d rc = Basis(c);
-    const Eigen::Matrix3d ry = Basis(y);
-    const Eigen::Matrix3d pitch_rel = rc.transpose() * ry;       // Ry(pitch)
-    const Eigen::Matrix3d roll_rel = ry.transpose() * Basis(p);  // Rx(roll)
-    value.linear_m = c.getOrigin().x() - geometry.pitch_axis_origin_m.x();
-    value.pitch_rad = std::atan2(pitch_rel(0, 2), pitch_rel(0, 0));
-    value.roll_rad = std::atan2(roll_rel(2, 1), roll_rel(1, 1));
-    const Eigen::Vector3d wc = FromBt(bodies.carriage().getAngularVelocity());
-    const Eigen::Vector3d wy = FromBt(bodies.yoke().getAngularVelocity());
-    const Eigen::Vector3d wp = FromBt(bodies.plate().getAngularVelocity());
-    rate.linear_m = bodies.carriage().getLinearVelocity().x();
-    rate.pitch_rad = (wy - wc).dot(rc.col(1));
-    rate.roll_rad = (wp - wy).dot(ry.col(0));
+/// Joint values and rates: Bullet's joint coordinates.
+void MeasureJoints(const btMultiBody& body, TableJoints& value, TableJoints& rate) {
+    value.linear_m = body.getJointPos(kCarriage);
+    value.pitch_rad = body.getJointPos(kYoke);
+    value.roll_rad = body.getJointPos(kPlate);
+    rate.linear_m = body.getJointVel(kCarriage);
+    rate.pitch_rad = body.getJointVel(kYoke);
+    rate.roll_rad = body.getJointVel(kPlate);
 }
 
-/// Gives every body the velocity of the commanded joint rates at the start.
-void SetStartVelocities(TableBodies& bodies, const TableJoints& rate) {
-    const btVector3 v(static_cast<btScalar>(rate.linear_m), 0, 0);
-    const btVector3 pivot = bodies.yoke().getCenterOfMassPosition();
-    const btVector3 w_pitch = btVector3(0, static_cast<btScalar>(rate.pitch_rad), 0);
-    const btVector3 roll_axis = bodies.yoke().getCenterOfMassTransform().getBasis().getColumn(0);
-    const btVector3 w_plate = w_pitch + roll_axis * static_cast<btScalar>(rate.roll_rad);
-    const btVector3 roll_pivot =
-        bodies.yoke().getCenterOfMassTransform() * bodies.roll().getAFrame().getOrigin();
-    const btVector3 plate_pos = bodies.plate().getCenterOfMassPosition();
-    const btVector3 v_roll_pivot = v + w_pitch.cross(roll_pivot - pivot);
-    bodies.carriage().setLinearVelocity(v);
-    bodies.yoke().setLinearVelocity(v);
-    bodies.yoke().setAngularVelocity(w_pitch);
-    bodies.plate().setLinearVelocity(v_roll_pivot + w_plate.cross(plate_pos - roll_pivot));
-    bodies.plate().setAngularVelocity(w_plate);
-}
-
-/// Moment of inertia (kg m^2) of `body` about the axis through `pivot` along unit `axis`.
-double InertiaAbout(const btRigidBody& body, const btVector3& pivot, const btVector3& axis) {
-    const btVector3 local_axis = body.getCenterOfMassTransform().getBasis().transpose() * axis;
-    const btVector3 inv_local = body.getInvInertiaDiagLocal();
+/// Moment of inertia (kg m^2) of link `i` about the axis through `pivot` along unit `axis`.
+double InertiaAbout(const TableBody& table,
+                    const btMultiBody& body,
+                    int i,
+                    const btVector3& pivot,
+                    const btVector3& axis) {
+    const btTransform& t = table.LinkTransform(i);
+    const btVector3 local_axis = t.getBasis().transpose() * axis;
+    const btVector3& inertia = body.getLinkInertia(i);
     double i_axis = 0.0;
     for (int k = 0; k < 3; ++k) {
-        const double inv = inv_local[k];
-        i_axis += inv > 0.0 ? local_axis[k] * local_axis[k] / inv : 0.0;
+        i_axis += local_axis[k] * local_axis[k] * inertia[k];
     }
-    const double lever = (body.getCenterOfMassPosition() - pivot).cross(axis).length();
-    return i_axis + lever * lever / body.getInvMass();
+    const double lever = (t.getOrigin() - pivot).cross(axis).length();
+    return i_axis + lever * lever * body.getLinkMass(i);
 }
 
-/// Gravity torque (N m) about the axis through `pivot` of the bodies in `distal`.
-double GravityTorque(std::initializer_list<const btRigidBody*> distal,
+/// Gravity torque (N m) about the axis through `pivot` of the links in `distal`.
+double GravityTorque(const TableBody& table,
+                     const btMultiBody& body,
+                     std::initializer_list<int> distal,
                      const btVector3& pivot,
                      const btVector3& axis) {
     double torque = 0.0;
-    for (const btRigidBody* body : distal) {
-        const btVector3 weight(0, 0, static_cast<btScalar>(-kGravity / body->getInvMass()));
-        torque += (body->getCenterOfMassPosition() - pivot).cross(weight).dot(axis);
+    for (const int i : distal) {
+        const btVector3 weight(0, 0, static_cast<btScalar>(-kGravity) * body.getLinkMass(i));
+        torque += (table.LinkTransform(i).getOrigin() - pivot).cross(weight).dot(axis);
     }
     return torque;
-}
-
-/// Spring-damper torque about a hinge, applied equal and opposite to its two bodies.
-void ApplyJointTorque(btRigidBody& a, btRigidBody& b, const btVector3& axis, double torque_nm) {
-    const btVector3 t = axis * static_cast<btScalar>(torque_nm);
-    b.applyTorque(t);
-    a.applyTorque(-t);
 }
 
 struct Commands {
@@ -237,66 +184,67 @@ Commands CommandAt(const SpeedSchedule& schedule,
             TableJoints{x.rate_rad_s, r.rate_rad_s, p.rate_rad_s}};
 }
 
-/// The rotary joints' drive: rigid dead-beat motors, or the compliant spring-damper servo.
-class RotaryDrive {
+/// The joints' drives at the physics rate: the carriage is always a dead-beat velocity servo
+/// (the rate that lands on the command next step); the rotary joints are the same rigid
+/// servos, or the compliant spring-damper servo with gravity feed-forward.
+class Drive {
 public:
-    RotaryDrive(TableBodies& bodies, const TableConfig& config)
-        : dt_(1.0 / config.physics_rate_hz),
+    Drive(TableBody& table, const TableConfig& config, const TableGeometry& geometry)
+        : pitch_to_roll_(ToBt(geometry.pitch_to_roll_m)),
+          dt_(1.0 / config.physics_rate_hz),
           compliant_(config.compliance.enabled),
           wn_(2.0 * std::numbers::pi * config.compliance.natural_frequency_hz),
           zeta_(config.compliance.damping_ratio) {
-        // Inertias of the distal bodies about each axis, taken at the start pose.
-        const btTransform& yoke = bodies.yoke().getCenterOfMassTransform();
-        const btVector3 pitch_pivot = yoke.getOrigin();
+        // Inertias of the distal links about each axis, taken at the start pose.
+        const btMultiBody& body = table.body();
+        const btTransform& yoke = table.LinkTransform(kYoke);
         const btVector3 pitch_axis(0, 1, 0);
-        pitch_inertia_ = InertiaAbout(bodies.yoke(), pitch_pivot, pitch_axis) +
-                         InertiaAbout(bodies.plate(), pitch_pivot, pitch_axis);
-        roll_inertia_ = InertiaAbout(bodies.plate(), yoke * bodies.roll().getAFrame().getOrigin(),
-                                     yoke.getBasis().getColumn(0));
-        if (compliant_) {
-            bodies.pitch().enableMotor(false);
-            bodies.roll().enableMotor(false);
-        }
+        pitch_inertia_ = InertiaAbout(table, body, kYoke, yoke.getOrigin(), pitch_axis) +
+                         InertiaAbout(table, body, kPlate, yoke.getOrigin(), pitch_axis);
+        roll_inertia_ =
+            InertiaAbout(table, body, kPlate, RollPivot(table), yoke.getBasis().getColumn(0));
     }
 
-    void Apply(TableBodies& bodies,
-               const Commands& cmd,
-               const TableJoints& q,
-               const TableJoints& q_rate) const {
+    /// Sets the joint rates for the step to the next command.
+    void Step(TableBody& table, const Commands& cmd, const TableJoints& q, const TableJoints& qd) {
+        btMultiBody& body = table.body();
+        const double linear_rate = (cmd.value.linear_m - q.linear_m) / dt_;
         if (!compliant_) {
-            // Bullet's hinge motor velocity is that of body A relative to B about the axis:
-            // the opposite sign of our joint rate (B relative to A).
-            const auto max_impulse = static_cast<btScalar>(kMaxMotorTorqueNm * dt_);
-            bodies.pitch().enableAngularMotor(
-                true, static_cast<btScalar>(-(cmd.value.pitch_rad - q.pitch_rad) / dt_),
-                max_impulse);
-            bodies.roll().enableAngularMotor(
-                true, static_cast<btScalar>(-(cmd.value.roll_rad - q.roll_rad) / dt_), max_impulse);
+            // Stiff servos on every joint: the rates are the dead-beat commands whatever the
+            // loads, so the rigid table follows the command exactly at each step.
+            body.setJointVel(kCarriage, static_cast<btScalar>(linear_rate));
+            body.setJointVel(kYoke,
+                             static_cast<btScalar>((cmd.value.pitch_rad - q.pitch_rad) / dt_));
+            body.setJointVel(kPlate,
+                             static_cast<btScalar>((cmd.value.roll_rad - q.roll_rad) / dt_));
             return;
         }
         // Spring-damper servo with gravity feed-forward (a real drive's integral action), so
         // the table rings about its command instead of sagging.
-        const btTransform& yoke = bodies.yoke().getCenterOfMassTransform();
-        const btVector3 roll_axis = yoke.getBasis().getColumn(0);
-        const btVector3 roll_pivot = yoke * bodies.roll().getAFrame().getOrigin();
-        const btVector3 pitch_axis =
-            bodies.carriage().getCenterOfMassTransform().getBasis().getColumn(1);
+        const btTransform& yoke = table.LinkTransform(kYoke);
         const double pitch_torque =
             Spring(pitch_inertia_, cmd.value.pitch_rad - q.pitch_rad,
-                   cmd.rate.pitch_rad - q_rate.pitch_rad) -
-            GravityTorque({&bodies.yoke(), &bodies.plate()}, yoke.getOrigin(), pitch_axis);
-        const double roll_torque = Spring(roll_inertia_, cmd.value.roll_rad - q.roll_rad,
-                                          cmd.rate.roll_rad - q_rate.roll_rad) -
-                                   GravityTorque({&bodies.plate()}, roll_pivot, roll_axis);
-        ApplyJointTorque(bodies.carriage(), bodies.yoke(), pitch_axis, pitch_torque);
-        ApplyJointTorque(bodies.yoke(), bodies.plate(), roll_axis, roll_torque);
+                   cmd.rate.pitch_rad - qd.pitch_rad) -
+            GravityTorque(table, body, {kYoke, kPlate}, yoke.getOrigin(), btVector3(0, 1, 0));
+        const double roll_torque =
+            Spring(roll_inertia_, cmd.value.roll_rad - q.roll_rad,
+                   cmd.rate.roll_rad - qd.roll_rad) -
+            GravityTorque(table, body, {kPlate}, RollPivot(table), yoke.getBasis().getColumn(0));
+        body.addJointTorque(kYoke, static_cast<btScalar>(pitch_torque));
+        body.addJointTorque(kPlate, static_cast<btScalar>(roll_torque));
+        table.IntegrateForces(dt_);
+        table.ServoImpulse(kCarriage, linear_rate);
     }
 
 private:
+    [[nodiscard]] btVector3 RollPivot(const TableBody& table) const {
+        return table.LinkTransform(kYoke) * pitch_to_roll_;
+    }
     [[nodiscard]] double Spring(double inertia, double error, double error_rate) const {
         return inertia * (wn_ * wn_ * error + 2.0 * zeta_ * wn_ * error_rate);
     }
 
+    btVector3 pitch_to_roll_;
     double dt_;
     bool compliant_;
     double wn_;
@@ -318,30 +266,29 @@ TableRun RunTable(const TableConfig& config, Motion motion) {
     const auto steps = static_cast<long>(std::ceil(run.schedule.Duration() / dt - 1e-9));
 
     const Commands start = CommandAt(run.schedule, roll, pitch, 0.0);
-    TableBodies bodies(geometry, start.value);
-    SetStartVelocities(bodies, start.rate);
-    const RotaryDrive drive(bodies, config);
+    TableBody table(geometry, start.value, start.rate);
+    Drive drive(table, config, geometry);
 
+    const auto samples_expected = static_cast<std::size_t>(steps / config.output_decimation + 2);
     std::vector<core::TimedPose> samples;
-    samples.reserve(static_cast<std::size_t>(steps / config.output_decimation + 1));
+    samples.reserve(samples_expected);
+    run.joints.reserve(samples_expected);
+    run.rates.reserve(samples_expected);
     TableJoints q;
     TableJoints q_rate;
+    MeasureJoints(table.body(), q, q_rate);
     const auto record = [&](double t_s) {
-        MeasureJoints(bodies, geometry, q, q_rate);
-        samples.push_back({t_s, FromBt(bodies.plate().getCenterOfMassTransform())});
+        samples.push_back({t_s, FromBt(table.LinkTransform(kPlate))});
         run.joints.push_back(q);
         run.rates.push_back(q_rate);
     };
     record(0.0);
     for (long k = 0; k < steps; ++k) {
         const double t_next = static_cast<double>(k + 1) / config.physics_rate_hz;
-        const Commands cmd = CommandAt(run.schedule, roll, pitch, t_next);
-        MeasureJoints(bodies, geometry, q, q_rate);
-        // Dead-beat velocity servo: the motor velocity that lands on the command next step.
-        bodies.slider().setTargetLinMotorVelocity(
-            static_cast<btScalar>((cmd.value.linear_m - q.linear_m) / dt));
-        drive.Apply(bodies, cmd, q, q_rate);
-        bodies.world().stepSimulation(static_cast<btScalar>(dt), 0, static_cast<btScalar>(dt));
+        drive.Step(table, CommandAt(run.schedule, roll, pitch, t_next), q, q_rate);
+        table.body().stepPositionsMultiDof(static_cast<btScalar>(dt));
+        table.UpdateTransforms();
+        MeasureJoints(table.body(), q, q_rate);
         if ((k + 1) % config.output_decimation == 0 || k + 1 == steps) {
             record(t_next);
         }
