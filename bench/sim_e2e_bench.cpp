@@ -29,7 +29,6 @@
 #include "casmap/scenegen/heightfield.hpp"
 #include "casmap/scenegen/random.hpp"
 #include "casmap/sensor_models/lms200_model.hpp"
-#include "casmap/sensor_models/scratch_array.hpp"
 #include "casmap/sim/ground_truth.hpp"
 #include "casmap/sim/simulator.hpp"
 #include "casmap/sim/world.hpp"
@@ -121,29 +120,30 @@ std::size_t Triangles(const Scene& scene) {
     return n;
 }
 
-// Traces every pulse of every scan the run casts, without the sensor model.
+// Traces every pulse of every scan the run casts as the simulator does (one ray batch per
+// scan), without the sensor model.
 void TraceOnly(const casmap::sim::World& world,
                const casmap::sensor_models::Lms200Model& model,
                const casmap::core::Trajectory& poses,
                std::size_t scans) {
-    using casmap::sensor_models::kMaxSubrays;
-    using casmap::sensor_models::ScratchArray;
-    const auto tmax = static_cast<float>(model.TraceRangeM());
+    const std::size_t n = model.BeamCount();
+    const std::size_t m = model.SubrayCount();
+    casmap::sim::RayBatch rays;
+    casmap::sim::HitBatch hits;
+    rays.tmax_m = static_cast<float>(model.TraceRangeM());
     for (std::size_t k = 0; k < scans; ++k) {
         const casmap::core::Scan scan =
             model.MakeScan(poses.StartTime() + static_cast<double>(k) * model.ScanPeriodS());
-        for (std::size_t i = 0; i < model.BeamCount(); ++i) {
+        rays.Resize(n * m);
+        for (std::size_t i = 0; i < n; ++i) {
             const auto frame = model.PulseBasis(k, i, *poses.PoseAt(scan.BeamTime(i)));
-            ScratchArray<casmap::sim::Ray, kMaxSubrays> rays;
             model.ForEachSubray(
-                frame, [&](std::size_t, const Eigen::Vector3d& o, const Eigen::Vector3d& d) {
-                    rays.EmplaceBack(o.cast<float>(), d.cast<float>(), tmax);
+                frame, [&](std::size_t j, const Eigen::Vector3d& o, const Eigen::Vector3d& d) {
+                    rays.Set(i * m + j, o.cast<float>(), d.cast<float>());
                 });
-            ScratchArray<casmap::sim::Hit, kMaxSubrays> hits;
-            hits.Construct(model.SubrayCount());
-            world.CastPacket(std::as_const(rays).span(), hits.span());
-            benchmark::DoNotOptimize(hits[0]);
         }
+        world.CastBatch(rays, hits);
+        benchmark::DoNotOptimize(hits.distance_m.data());
     }
 }
 

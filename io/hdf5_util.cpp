@@ -152,7 +152,7 @@ void WriteDataset(hid_t parent,
         Check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()),
               "H5Pset_chunk " + name);
         Check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle");
-        Check(H5Pset_deflate(dcpl.get(), 4), "H5Pset_deflate");
+        Check(H5Pset_deflate(dcpl.get(), 1), "H5Pset_deflate");
     }
     const Id dataset = Check(H5Dcreate2(parent, name.c_str(), file_type, space.get(), H5P_DEFAULT,
                                         dcpl.get(), H5P_DEFAULT),

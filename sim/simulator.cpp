@@ -2,10 +2,12 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <span>
 #include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
@@ -20,7 +22,8 @@ using sensor_models::PulseContext;
 using sensor_models::PulseResult;
 using sensor_models::ScratchArray;
 
-// Fills beam i of `out` from a pose per beam time.
+// Fills beam i of `out` from a pose per beam time. All sub-rays of the scan are traced in one
+// batch (consecutive pulses share Embree packets), then each pulse's return is formed.
 template <class PoseAtBeam>
 ScanResult CastScanImpl(const World& world,
                         const Lms200Model& model,
@@ -30,14 +33,47 @@ ScanResult CastScanImpl(const World& world,
     ScanResult out;
     out.scan = model.MakeScan(stamp_s);
     const std::size_t n = model.BeamCount();
+    const std::size_t m = model.SubrayCount();
     out.truth.labels.resize(n);
     out.truth.true_range_m.resize(n);
+    RayBatch rays;
+    rays.Resize(n * m);
+    rays.tmax_m = static_cast<float>(model.TraceRangeM());
+    std::vector<Eigen::Vector3d> axes(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const sensor_models::PulseFrame frame =
+            model.PulseBasis(scan_index, i, pose_at(i, out.scan.BeamTime(i)));
+        axes[i] = frame.axis;
+        model.ForEachSubray(frame,
+                            [&rays, first = i * m](std::size_t j, const Eigen::Vector3d& origin,
+                                                   const Eigen::Vector3d& dir) {
+                                rays.Set(first + j, origin.cast<float>(), dir.cast<float>());
+                            });
+    }
+    HitBatch hits;
+    if (m == 1) {
+        world.CastBatchSingly(rays, hits);  // the ideal scanner: one ray per pulse
+    } else {
+        world.CastBatch(rays, hits);
+    }
     for (std::size_t i = 0; i < n; ++i) {
         PulseContext pulse;
         pulse.scan_index = scan_index;
         pulse.beam = static_cast<std::uint32_t>(i);
         pulse.time_s = out.scan.BeamTime(i);
-        const PulseResult r = CastPulse(world, model, pose_at(i, pulse.time_s), pulse);
+        pulse.beam_direction_world = axes[i];
+        ScratchArray<sensor_models::SubrayHit, kMaxSubrays> sub_hits;
+        for (std::size_t j = i * m; j < (i + 1) * m; ++j) {
+            const float d = hits.distance_m[j];
+            if (!(d < std::numeric_limits<float>::infinity())) {
+                sub_hits.EmplaceBack();  // a miss
+                continue;
+            }
+            const std::uint32_t id = hits.object_id[j];
+            sub_hits.EmplaceBack(static_cast<double>(d), static_cast<double>(hits.cos_incidence[j]),
+                                 static_cast<double>(hits.reflectivity[j]), id);
+        }
+        const PulseResult r = model.FormReturn(pulse, std::as_const(sub_hits).span());
         out.scan.beams[i] = r.beam;
         out.truth.labels[i] = r.label;
         out.truth.true_range_m[i] = r.true_range_m;

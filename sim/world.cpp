@@ -467,4 +467,105 @@ void World::CastPacket(std::span<const Ray> rays, std::span<Hit> hits) const {
     }
 }
 
+void RayBatch::Resize(std::size_t n) {
+    for (std::vector<float>* v : {&ox, &oy, &oz, &dx, &dy, &dz}) {
+        v->resize(n);
+    }
+}
+
+namespace {
+
+// |cos| between a ray and an unnormalised geometric normal, with the very float operations of
+// MakeHit + Hit::normal.dot(direction) (so batch and single-ray hits agree bit for bit).
+float CosIncidence(const Eigen::Vector3f& ng, const Eigen::Vector3f& dir) {
+    const float norm = ng.norm();
+    const Eigen::Vector3f n = norm > 0.0F ? Eigen::Vector3f(ng / norm) : Eigen::Vector3f::Zero();
+    return std::abs(n.dot(dir));
+}
+
+void ResizeHits(HitBatch& hits, std::size_t n) {
+    hits.distance_m.resize(n);
+    hits.cos_incidence.resize(n);
+    hits.reflectivity.resize(n);
+    hits.object_id.resize(n);
+}
+
+}  // namespace
+
+void World::CastBatch(const RayBatch& rays, HitBatch& hits) const {
+    const std::size_t n = rays.size();
+    ResizeHits(hits, n);
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(64) int valid[16];
+    alignas(64) RTCRayHit16 rh;
+    // Fields Embree only reads, once.
+    for (std::size_t k = 0; k < 16; ++k) {
+        rh.ray.tnear[k] = 0.0F;
+        rh.ray.time[k] = 0.0F;
+        rh.ray.mask[k] = 0xFFFFFFFFU;
+        rh.ray.id[k] = static_cast<unsigned int>(k);
+        rh.ray.flags[k] = 0U;
+    }
+    const float* reflectivity = impl_->reflectivity.data();
+    for (std::size_t first = 0; first < n; first += 16) {
+        const std::size_t m = std::min<std::size_t>(16, n - first);
+        if (m == 16) {
+            std::copy_n(rays.ox.data() + first, 16, rh.ray.org_x);
+            std::copy_n(rays.oy.data() + first, 16, rh.ray.org_y);
+            std::copy_n(rays.oz.data() + first, 16, rh.ray.org_z);
+            std::copy_n(rays.dx.data() + first, 16, rh.ray.dir_x);
+            std::copy_n(rays.dy.data() + first, 16, rh.ray.dir_y);
+            std::copy_n(rays.dz.data() + first, 16, rh.ray.dir_z);
+        }
+        for (std::size_t k = 0; k < 16; ++k) {
+            valid[k] = k < m ? -1 : 0;
+            if (m < 16) {
+                const std::size_t j = first + (k < m ? k : 0);
+                rh.ray.org_x[k] = rays.ox[j];
+                rh.ray.org_y[k] = rays.oy[j];
+                rh.ray.org_z[k] = rays.oz[j];
+                rh.ray.dir_x[k] = rays.dx[j];
+                rh.ray.dir_y[k] = rays.dy[j];
+                rh.ray.dir_z[k] = rays.dz[j];
+            }
+            rh.ray.tfar[k] = rays.tmax_m;
+            rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect16(valid, impl_->scene.get(), &context, &rh);
+        for (std::size_t k = 0; k < m; ++k) {
+            const std::size_t j = first + k;
+            const unsigned int id = rh.hit.geomID[k];
+            if (id == RTC_INVALID_GEOMETRY_ID) {
+                hits.distance_m[j] = std::numeric_limits<float>::infinity();
+                continue;
+            }
+            hits.distance_m[j] = rh.ray.tfar[k];
+            hits.cos_incidence[j] =
+                CosIncidence(Eigen::Vector3f(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]),
+                             Eigen::Vector3f(rays.dx[j], rays.dy[j], rays.dz[j]));
+            hits.reflectivity[j] = reflectivity[id];
+            hits.object_id[j] = id;
+        }
+    }
+}
+
+void World::CastBatchSingly(const RayBatch& rays, HitBatch& hits) const {
+    const std::size_t n = rays.size();
+    ResizeHits(hits, n);
+    for (std::size_t j = 0; j < n; ++j) {
+        const Eigen::Vector3f dir(rays.dx[j], rays.dy[j], rays.dz[j]);
+        const Hit h =
+            CastOne(Ray{Eigen::Vector3f(rays.ox[j], rays.oy[j], rays.oz[j]), dir, rays.tmax_m});
+        hits.distance_m[j] = h.distance_m;
+        if (h.valid()) {
+            hits.cos_incidence[j] = std::abs(h.normal.dot(dir));
+            hits.reflectivity[j] = h.reflectivity;
+            hits.object_id[j] = h.object_id;
+        }
+    }
+}
+
 }  // namespace casmap::sim
