@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <random>
@@ -369,6 +370,36 @@ TEST(World, PacketAndSingleRaysAgree) {
     EXPECT_FALSE(world.CastOne(rays.back()).valid());
     for (std::size_t k = 0; k < per_object.size(); ++k) {
         EXPECT_GT(per_object[k], 0) << scene.objects[k].name << " never hit (seed " << seed << ")";
+    }
+    // The same rays as one batch (16-wide packets across the whole list, a partial last one)
+    // and one by one through the batch interface.
+    RayBatch batch;
+    batch.Resize(rays.size() - 1);
+    batch.tmax_m = rays.front().tmax_m;
+    for (std::size_t i = 0; i + 1 < rays.size(); ++i) {
+        batch.Set(i, rays[i].origin, rays[i].direction);
+    }
+    HitBatch packed;
+    HitBatch single;
+    world.CastBatch(batch, packed);
+    world.CastBatchSingly(batch, single);
+    ASSERT_EQ(packed.distance_m.size(), batch.size());
+    for (std::size_t i = 0; i < batch.size(); ++i) {
+        const Hit one = world.CastOne(rays[i]);
+        ASSERT_EQ(one.valid(), packed.distance_m[i] < std::numeric_limits<float>::infinity())
+            << "ray " << i;
+        ASSERT_EQ(one.distance_m, single.distance_m[i]) << "ray " << i;
+        if (!one.valid()) {
+            continue;
+        }
+        EXPECT_EQ(one.object_id, packed.object_id[i]) << "ray " << i;
+        EXPECT_EQ(one.object_id, single.object_id[i]) << "ray " << i;
+        EXPECT_NEAR(one.distance_m, packed.distance_m[i], 1e-5F) << "ray " << i;
+        const float cos_one = std::abs(one.normal.dot(rays[i].direction));
+        EXPECT_EQ(cos_one, single.cos_incidence[i]) << "ray " << i;
+        EXPECT_NEAR(cos_one, packed.cos_incidence[i], 1e-4F) << "ray " << i;
+        EXPECT_EQ(one.reflectivity, packed.reflectivity[i]) << "ray " << i;
+        EXPECT_EQ(one.reflectivity, single.reflectivity[i]) << "ray " << i;
     }
 }
 
