@@ -4,8 +4,8 @@ namespace casmap::core {
 namespace {
 constexpr std::array<std::string_view, kBeamStatusCount> kStatusNames = {
     "ok", "no_return", "dazzle", "overflow", "low_signal", "read_error", "out_of_range"};
-constexpr std::array<std::string_view, kBeamLabelCount> kLabelNames = {"valid", "mixed", "missing",
-                                                                       "spike", "no_target"};
+constexpr std::array<std::string_view, kBeamLabelCount> kLabelNames = {
+    "valid", "mixed", "missing", "spike", "no_target", "dazzled"};
 }  // namespace
 
 std::string_view ToString(BeamStatus status) {

@@ -29,8 +29,9 @@ enum class BeamLabel : std::uint8_t {
     kMissing = 2,   // a surface was there but no valid echo was reported
     kSpike = 3,     // an artifact: wrap-around overflow, short or random spike
     kNoTarget = 4,  // nothing within range
+    kDazzled = 5,   // a surface was there but its echo saturated the receiver (8190, dazzle)
 };
-inline constexpr int kBeamLabelCount = 5;
+inline constexpr int kBeamLabelCount = 6;
 
 struct Beam {
     float range_m = 0.0F;  // metres along the beam; meaningful only when status == kOk

@@ -35,6 +35,10 @@ struct SceneObject {
     Pose world_T_object;
     double reflectivity = 0.5;  // diffuse reflectance at 905 nm, 0..1
     bool terrain = false;       // drivable ground for the vehicle rig
+    /// A retro-reflector (prismatic or glass-bead sheeting, corner cubes): returns light back
+    /// towards the scanner, `reflectivity` x the sensor's retro_gain times a white diffuser's
+    /// echo (docs/scenes.md "Materials").
+    bool retro_reflective = false;
 };
 
 /// A scene as plain data: what io loads from YAML and sim turns into an Embree world.

@@ -114,36 +114,39 @@ constexpr std::array<const char*, scenegen::kObjectKinds> kKindNames = {
     "box", "drum", "pole", "ramp", "curb", "step", "rock"};
 
 void ReadScene(const std::string& file, const YAML::Node& node, scenegen::SceneGenConfig& s) {
-    ReadSection(file, node, "scene", s.Ranges(),
-                {"terrain_probability", "ground_cell_m", "noise_octaves", "max_slope_deg",
-                 "kind_weights", "terrain_rock_weight_factor", "min_gap_m", "p_dark", "p_bright"},
-                [&](const std::string& key, const YAML::Node& v, const std::string& field) {
-                    if (key == "kind_weights") {
-                        ReadWeights(file, v, field, kKindNames, s.kind_weights);
-                    } else if (key == "noise_octaves") {
-                        s.noise_octaves = static_cast<int>(Number(file, v, field));
-                    } else {
-                        double* targets[] = {&s.terrain_probability,
-                                             &s.ground_cell_m,
-                                             &s.max_slope_deg,
-                                             &s.terrain_rock_weight_factor,
-                                             &s.min_gap_m,
-                                             &s.p_dark,
-                                             &s.p_bright};
-                        const char* names[] = {"terrain_probability",
-                                               "ground_cell_m",
-                                               "max_slope_deg",
-                                               "terrain_rock_weight_factor",
-                                               "min_gap_m",
-                                               "p_dark",
-                                               "p_bright"};
-                        for (std::size_t i = 0; i < std::size(names); ++i) {
-                            if (key == names[i]) {
-                                *targets[i] = Number(file, v, field);
-                            }
-                        }
+    ReadSection(
+        file, node, "scene", s.Ranges(),
+        {"terrain_probability", "ground_cell_m", "noise_octaves", "max_slope_deg", "kind_weights",
+         "terrain_rock_weight_factor", "min_gap_m", "p_dark", "p_bright", "p_retro"},
+        [&](const std::string& key, const YAML::Node& v, const std::string& field) {
+            if (key == "kind_weights") {
+                ReadWeights(file, v, field, kKindNames, s.kind_weights);
+            } else if (key == "noise_octaves") {
+                s.noise_octaves = static_cast<int>(Number(file, v, field));
+            } else {
+                double* targets[] = {&s.terrain_probability,
+                                     &s.ground_cell_m,
+                                     &s.max_slope_deg,
+                                     &s.terrain_rock_weight_factor,
+                                     &s.min_gap_m,
+                                     &s.p_dark,
+                                     &s.p_bright,
+                                     &s.p_retro};
+                const char* names[] = {"terrain_probability",
+                                       "ground_cell_m",
+                                       "max_slope_deg",
+                                       "terrain_rock_weight_factor",
+                                       "min_gap_m",
+                                       "p_dark",
+                                       "p_bright",
+                                       "p_retro"};
+                for (std::size_t i = 0; i < std::size(names); ++i) {
+                    if (key == names[i]) {
+                        *targets[i] = Number(file, v, field);
                     }
-                });
+                }
+            }
+        });
 }
 
 template <typename T>
@@ -272,6 +275,7 @@ void EmitDatasetSpec(YAML::Emitter& out, const scenegen::DatasetSpec& spec_in) {
     EmitNumber(out, "min_gap_m", s.min_gap_m);
     EmitNumber(out, "p_dark", s.p_dark);
     EmitNumber(out, "p_bright", s.p_bright);
+    EmitNumber(out, "p_retro", s.p_retro);
     EmitRanges(out, spec.scene.Ranges());
     out << YAML::EndMap;
     const scenegen::DomainConfig& d = spec.domain;

@@ -179,9 +179,9 @@ core::Pose ReadPose(const std::string& file, const YAML::Node& node, const std::
 core::SceneObject ReadObject(const std::string& file,
                              const YAML::Node& node,
                              const std::string& field) {
-    RejectUnknownKeys(
-        file, node, field,
-        {"name", "box", "cylinder", "mesh", "scale", "pose", "reflectivity", "terrain"});
+    RejectUnknownKeys(file, node, field,
+                      {"name", "box", "cylinder", "mesh", "scale", "pose", "reflectivity",
+                       "terrain", "retro_reflective"});
     core::SceneObject object;
     ReadRequired(file, node, field, "name", object.name);
     if (object.name.empty()) {
@@ -214,6 +214,7 @@ core::SceneObject ReadObject(const std::string& file,
         }
     }
     ReadOptional(file, node, field, "terrain", object.terrain);
+    ReadOptional(file, node, field, "retro_reflective", object.retro_reflective);
     return object;
 }
 

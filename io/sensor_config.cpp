@@ -50,6 +50,8 @@ const std::array kFields = {
     Field{"soft_edge_db", &Lms200Config::soft_edge_db},
     Field{"low_signal_fraction", &Lms200Config::low_signal_fraction},
     Field{"min_range_m", &Lms200Config::min_range_m},
+    Field{"retro_gain", &Lms200Config::retro_gain},
+    Field{"saturation_peak", &Lms200Config::saturation_peak},
     Field{"noise_enabled", &Lms200Config::noise_enabled},
     Field{"noise_sigma0_mm_units_m", &Lms200Config::noise_sigma0_mm_units_m},
     Field{"noise_sigma0_cm_units_m", &Lms200Config::noise_sigma0_cm_units_m},

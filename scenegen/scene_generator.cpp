@@ -64,12 +64,20 @@ struct Occupancy {
     }
 };
 
-double DrawReflectivity(const SceneGenConfig& k, Rng& rng) {
+// One uniform draw picks the class (dark, bright, retro-reflective, normal), one the value.
+void DrawMaterial(const SceneGenConfig& k, Rng& rng, GenObject& o) {
     const double u = rng.Uniform();
-    const Range& r = u < k.p_dark                ? k.dark_reflectivity
-                     : u < k.p_dark + k.p_bright ? k.bright_reflectivity
-                                                 : k.normal_reflectivity;
-    return rng.Draw(r);
+    o.retro_reflective = false;
+    const Range* r = &k.normal_reflectivity;
+    if (u < k.p_dark) {
+        r = &k.dark_reflectivity;
+    } else if (u < k.p_dark + k.p_bright) {
+        r = &k.bright_reflectivity;
+    } else if (u < k.p_dark + k.p_bright + k.p_retro) {
+        r = &k.retro_reflectivity;
+        o.retro_reflective = true;
+    }
+    o.reflectivity = rng.Draw(*r);
 }
 
 // Shape of one obstacle (sizes, orientation) and its footprint radius; position comes later.
@@ -113,7 +121,7 @@ GenObject DrawShape(const SceneGenConfig& k, ObjectKind kind, int rock_meshes, R
             break;
         }
     }
-    o.reflectivity = DrawReflectivity(k, rng);
+    DrawMaterial(k, rng, o);
     return o;
 }
 
@@ -286,6 +294,7 @@ std::vector<RangeField> SceneGenConfig::Ranges() {
             {"dark_reflectivity", &dark_reflectivity, 0.0, 1.0},
             {"normal_reflectivity", &normal_reflectivity, 0.0, 1.0},
             {"bright_reflectivity", &bright_reflectivity, 0.0, 1.0},
+            {"retro_reflectivity", &retro_reflectivity, 0.0, 1.0},
             {"ground_reflectivity", &ground_reflectivity, 0.0, 1.0}};
 }
 
@@ -332,8 +341,11 @@ void SceneGenConfig::Validate(const std::string& where) const {
     if (!(min_gap_m >= 0.0 && min_gap_m <= 1.0)) {
         fail("min_gap_m", FormatNumber(min_gap_m), "allowed: 0..1");
     }
-    if (!(p_dark >= 0.0 && p_bright >= 0.0 && p_dark + p_bright <= 1.0)) {
-        fail("p_dark", FormatNumber(p_dark) + " + p_bright " + FormatNumber(p_bright),
+    if (!(p_dark >= 0.0 && p_bright >= 0.0 && p_retro >= 0.0 &&
+          p_dark + p_bright + p_retro <= 1.0)) {
+        fail("p_dark",
+             FormatNumber(p_dark) + " + p_bright " + FormatNumber(p_bright) + " + p_retro " +
+                 FormatNumber(p_retro),
              "allowed: each >= 0, sum <= 1");
     }
 }

@@ -85,9 +85,13 @@ struct SceneGenConfig {
     // Materials: diffuse reflectance at 905 nm, from one of three classes per object.
     double p_dark = 0.15;
     double p_bright = 0.15;
+    // Retro-reflectors (sheeting, reflector posts): their `reflectivity` scales the sensor's
+    // retro_gain; they dazzle the scanner when close (docs/scenes.md "Materials").
+    double p_retro = 0.03;
     Range dark_reflectivity{0.02, 0.08};
     Range normal_reflectivity{0.1, 0.6};
     Range bright_reflectivity{0.6, 1.0};
+    Range retro_reflectivity{0.3, 1.0};
     Range ground_reflectivity{0.1, 0.5};
 
     /// Every Range field with its key and allowed bounds.
@@ -108,6 +112,7 @@ struct GenObject {
     Eigen::Vector3d xyz_m = Eigen::Vector3d::Zero();
     Eigen::Vector3d rpy_deg = Eigen::Vector3d::Zero();
     double reflectivity = 0.5;
+    bool retro_reflective = false;
 };
 
 struct NegativeObstacle {

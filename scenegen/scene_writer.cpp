@@ -34,6 +34,9 @@ std::string ObjectYaml(const GenObject& o, const std::vector<std::string>& rock_
     }
     y += Pose(o);
     y += "    reflectivity: " + FormatNumber(o.reflectivity) + "\n";
+    if (o.retro_reflective) {
+        y += "    retro_reflective: true\n";
+    }
     return y;
 }
 

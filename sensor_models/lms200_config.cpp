@@ -68,6 +68,8 @@ void Lms200Config::Validate() const {
     RequirePositive("soft_edge_db", soft_edge_db);
     RequireProbability("low_signal_fraction", low_signal_fraction);
     RequireRange("min_range_m", min_range_m, 0.0, 10.0);
+    RequireRange("retro_gain", retro_gain, 1.0, 1e5);
+    RequireRange("saturation_peak", saturation_peak, 1.0, 1e12);
     RequirePositive("noise_sigma0_mm_units_m", noise_sigma0_mm_units_m);
     RequirePositive("noise_sigma0_cm_units_m", noise_sigma0_cm_units_m);
     RequireRange("noise_sigma_cap_factor", noise_sigma_cap_factor, 1.0, 100.0);

@@ -49,6 +49,14 @@ struct Lms200Config {
     double soft_edge_db = 1.5;         // [A] logistic scale in dB of E/T
     double low_signal_fraction = 0.5;  // [A] undetected lobe >= 0.5 T reports 8187, else 8191
     double min_range_m = 0.2;          // [A] closer echoes report 8191 (Gazebo SickLMS200 0.2 m)
+    /// [A] Echo of a retro-reflector over that of a white (100 %) diffuser at the same range
+    /// and incidence, per unit of its `reflectivity`: sheeting returns R_A ~ 250-600 cd/lx/m^2
+    /// against 1/pi for a white Lambertian surface (docs/sensor-model.md "Retro-reflectors").
+    double retro_gain = 1000.0;
+    /// [A] A detected lobe whose peak reaches this (units of T) saturates the receiver: the
+    /// scanner reports dazzle (8190). 50 dB above T; a white diffuser peaks at 2.5e4 T at the
+    /// 0.2 m minimum range, so only retro-reflectors (within ~3 m by default) saturate.
+    double saturation_peak = 1e5;
 
     // --- Range noise and bias (section 4.5); only on valid echoes ----------------------------
     bool noise_enabled = true;

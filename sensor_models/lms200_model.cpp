@@ -552,9 +552,12 @@ PulseResult Lms200Model::FormReturn(const PulseContext& pulse,
             in_range_weight += weights_[i];
         }
         const double d = std::max(h.distance_m, 1e-3);
+        // A retro-reflector sends its light back to the scanner: retro_gain x a white diffuser.
+        const double rho =
+            h.retro_reflective ? h.reflectivity * config_.retro_gain : h.reflectivity;
         samples[n] =
-            EchoSample{h.distance_m, weights_[i] * h.reflectivity *
-                                         std::clamp(h.cos_incidence, 0.0, 1.0) * scale / (d * d)};
+            EchoSample{h.distance_m,
+                       weights_[i] * rho * std::clamp(h.cos_incidence, 0.0, 1.0) * scale / (d * d)};
         source[n++] = i;
         r_lo = std::min(r_lo, h.distance_m);
         r_hi = std::max(r_hi, h.distance_m);
@@ -663,6 +666,11 @@ PulseResult Lms200Model::FormReturn(const PulseContext& pulse,
     r.echo_range_m = echo->centroid_m;
     if (echo->centroid_m < config_.min_range_m) {
         SetCode(core::BeamStatus::kNoReturn, lost, r);
+        return r;
+    }
+    if (echo->peak >= config_.saturation_peak) {
+        // The receiver saturates (a retro-reflector close by): the scanner reports dazzle.
+        SetCode(core::BeamStatus::kDazzle, core::BeamLabel::kDazzled, r);
         return r;
     }
 

@@ -55,9 +55,10 @@ struct PulseFrame {
 /// What one sub-ray hit, as the sensor model needs it.
 struct SubrayHit {
     double distance_m = std::numeric_limits<double>::infinity();  // along the sub-ray; inf = miss
-    double cos_incidence = 1.0;    // |cos| of the angle between the ray and the surface normal
-    double reflectivity = 0.0;     // diffuse reflectance at 905 nm, 0..1
-    std::uint32_t surface_id = 0;  // identifies the material for the per-material bias
+    double cos_incidence = 1.0;     // |cos| of the angle between the ray and the surface normal
+    double reflectivity = 0.0;      // diffuse reflectance at 905 nm, 0..1
+    std::uint32_t surface_id = 0;   // identifies the material for the per-material bias
+    bool retro_reflective = false;  // a retro-reflector: energy x retro_gain, may saturate
 
     [[nodiscard]] bool valid() const {
         return distance_m < std::numeric_limits<double>::infinity();

@@ -71,7 +71,8 @@ ScanResult CastScanImpl(const World& world,
             }
             const std::uint32_t id = hits.object_id[j];
             sub_hits.EmplaceBack(static_cast<double>(d), static_cast<double>(hits.cos_incidence[j]),
-                                 static_cast<double>(hits.reflectivity[j]), id);
+                                 static_cast<double>(hits.reflectivity[j]), id,
+                                 hits.retro_reflective[j] != 0);
         }
         const PulseResult r = model.FormReturn(pulse, std::as_const(sub_hits).span());
         out.scan.beams[i] = r.beam;
@@ -120,7 +121,7 @@ PulseResult CastPulse(const World& world,
         }
         sub_hits.EmplaceBack(static_cast<double>(h.distance_m),
                              std::abs(static_cast<double>(h.normal.dot(rays[i].direction))),
-                             static_cast<double>(h.reflectivity), h.object_id);
+                             static_cast<double>(h.reflectivity), h.object_id, h.retro_reflective);
     }
     return model.FormReturn(pulse, std::as_const(sub_hits).span());
 }

@@ -278,6 +278,7 @@ struct World::Impl {
     ErrorSink errors;
     std::vector<std::unique_ptr<Cylinder>> cylinders;  // user data, stable addresses
     std::vector<float> reflectivity;                   // per geometry id = object index
+    std::vector<std::uint8_t> retro;                   // per geometry id: retro-reflector
     DevicePtr device{nullptr, &rtcReleaseDevice};
     ScenePtr scene{nullptr, &rtcReleaseScene};
 
@@ -359,6 +360,7 @@ Hit World::Impl::MakeHit(unsigned int geom_id,
         hit.normal = -hit.normal;  // face the ray
     }
     hit.reflectivity = reflectivity[geom_id];
+    hit.retro_reflective = retro[geom_id] != 0;
     hit.object_id = geom_id;
     return hit;
 }
@@ -382,6 +384,7 @@ World::World(const core::Scene& scene) : impl_(std::make_unique<Impl>()) {
         CheckObject(object);
         const auto id = static_cast<unsigned int>(i);
         impl_->reflectivity.push_back(static_cast<float>(object.reflectivity));
+        impl_->retro.push_back(object.retro_reflective ? 1 : 0);
         if (const auto* box = std::get_if<core::BoxShape>(&object.shape)) {
             impl_->AddTriangles(BoxTriangles(*box, object.world_T_object), id, object.name);
         } else if (const auto* cyl = std::get_if<core::CylinderShape>(&object.shape)) {
@@ -487,6 +490,7 @@ void ResizeHits(HitBatch& hits, std::size_t n) {
     hits.distance_m.resize(n);
     hits.cos_incidence.resize(n);
     hits.reflectivity.resize(n);
+    hits.retro_reflective.resize(n);
     hits.object_id.resize(n);
 }
 
@@ -509,6 +513,7 @@ void World::CastBatch(const RayBatch& rays, HitBatch& hits) const {
         rh.ray.flags[k] = 0U;
     }
     const float* reflectivity = impl_->reflectivity.data();
+    const std::uint8_t* retro = impl_->retro.data();
     for (std::size_t first = 0; first < n; first += 16) {
         const std::size_t m = std::min<std::size_t>(16, n - first);
         if (m == 16) {
@@ -547,6 +552,7 @@ void World::CastBatch(const RayBatch& rays, HitBatch& hits) const {
                 CosIncidence(Eigen::Vector3f(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]),
                              Eigen::Vector3f(rays.dx[j], rays.dy[j], rays.dz[j]));
             hits.reflectivity[j] = reflectivity[id];
+            hits.retro_reflective[j] = retro[id];
             hits.object_id[j] = id;
         }
     }
@@ -563,6 +569,7 @@ void World::CastBatchSingly(const RayBatch& rays, HitBatch& hits) const {
         if (h.valid()) {
             hits.cos_incidence[j] = std::abs(h.normal.dot(dir));
             hits.reflectivity[j] = h.reflectivity;
+            hits.retro_reflective[j] = h.retro_reflective ? 1 : 0;
             hits.object_id[j] = h.object_id;
         }
     }

@@ -23,6 +23,7 @@ struct Hit {
     float distance_m = std::numeric_limits<float>::infinity();
     Eigen::Vector3f normal = Eigen::Vector3f::Zero();  // unit, world frame, facing the ray
     float reflectivity = 0.0F;                         // of the object hit, 0..1
+    bool retro_reflective = false;                     // the object is a retro-reflector
     std::uint32_t object_id = std::numeric_limits<std::uint32_t>::max();  // index in Scene
 
     [[nodiscard]] bool valid() const { return distance_m < std::numeric_limits<float>::infinity(); }
@@ -48,12 +49,13 @@ struct RayBatch {
 };
 
 /// What each ray of a RayBatch hit: distance (+inf for a miss, then the rest is unset), |cos|
-/// of the angle between ray and surface normal, the object (index in the Scene) and its
-/// reflectivity.
+/// of the angle between ray and surface normal, the object (index in the Scene), its
+/// reflectivity and whether it is a retro-reflector.
 struct HitBatch {
     std::vector<float> distance_m;
     std::vector<float> cos_incidence;
     std::vector<float> reflectivity;
+    std::vector<std::uint8_t> retro_reflective;  // 1 for a retro-reflector
     std::vector<std::uint32_t> object_id;
 };
 

@@ -6,7 +6,7 @@
 `Dataset(DIR, split=None)` yields one `Sample` per successful manifest line: the raw elevation
 map H (m, NaN-free: unknown cells are 0 as in the paper), the certainty map C (counts), the
 exact truth (m, negative below the datum), the CAS classes and the per-beam truth labels
-(0 valid, 1 mixed, 2 missing, 3 spike, 4 no_target), as numpy arrays read with h5py. Pure
+(0 valid, 1 mixed, 2 missing, 3 spike, 4 no_target, 5 dazzled), as numpy arrays read with h5py. Pure
 Python (numpy + h5py); the `casmap` bindings are not needed.
 """
 import argparse
@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import h5py
 import numpy as np
 
-LABELS = ["valid", "mixed", "missing", "spike", "no_target"]
+LABELS = ["valid", "mixed", "missing", "spike", "no_target", "dazzled"]
 
 
 @dataclass

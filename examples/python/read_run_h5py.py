@@ -17,9 +17,9 @@ with h5py.File(sys.argv[1], "r") as f:
           f"{np.degrees(angles[-1]):.1f} deg")
     print(f"ok beams: {np.count_nonzero(status == 0)}, median range "
           f"{np.nanmedian(ranges):.3f} m")
-    if "labels" in scans:  # simulated runs: 0 valid, 1 mixed, 2 missing, 3 spike, 4 no target
-        counts = np.bincount(scans["labels"][()].ravel(), minlength=5)
-        print("labels valid/mixed/missing/spike/no_target:", " ".join(map(str, counts)))
+    if "labels" in scans:  # simulated: 0 valid, 1 mixed, 2 missing, 3 spike, 4 no target, 5 dazzled
+        counts = np.bincount(scans["labels"][()].ravel(), minlength=6)
+        print("labels valid/mixed/missing/spike/no_target/dazzled:", " ".join(map(str, counts)))
     if "poses" in f:
         xyz = f["poses/xyz_m"][()]  # P x 3, with f["poses/quat_xyzw"] the sensor pose
         print(f"{len(xyz)} poses, sensor travelled {np.linalg.norm(xyz[-1] - xyz[0]):.3f} m")

@@ -36,7 +36,7 @@ FILTER_METHODS = ("cas", "wiener", "average", "median", "cwm")
 BEAM_STATUS = ("ok", "no_return", "dazzle", "overflow", "low_signal", "read_error",
                "out_of_range")
 #: core::BeamLabel codes (the `labels` arrays of simulated scans).
-BEAM_LABELS = ("valid", "mixed", "missing", "spike", "no_target")
+BEAM_LABELS = ("valid", "mixed", "missing", "spike", "no_target", "dazzled")
 #: mapper::PixelClass codes (the `classes` array of casmap.filter("cas", ...)).
 CAS_CLASSES = ("untouched", "removed", "filled", "border")
 #: Seconds between adjacent 1-degree pulses of the LMS 200 (75 Hz mirror): (1/75) / 360.

@@ -387,7 +387,7 @@ def float_status(f):
 def bad_status(f):
     f["scans/status"][1, 7] = 9
 def bad_label(f):
-    f["scans/labels"][0, 3] = 5
+    f["scans/labels"][0, 3] = 6
 def no_angle(f):
     del f["scans"].attrs["angle_step_rad"]
 def no_poses(f):
@@ -413,7 +413,7 @@ print("ok")
     ExpectReadError(dir / "short_raw.h5", "/scans/raw");
     ExpectReadError(dir / "float_status.h5", "/scans/status = float");
     ExpectReadError(dir / "bad_status.h5", "/scans/status[1, 7] = 9");
-    ExpectReadError(dir / "bad_label.h5", "/scans/labels[0, 3] = 5");
+    ExpectReadError(dir / "bad_label.h5", "/scans/labels[0, 3] = 6");
     ExpectReadError(dir / "no_angle.h5", "/scans attribute angle_step_rad");
     ExpectReadError(dir / "no_poses.h5", "/poses/quat_xyzw (required dataset is missing)");
     ExpectReadError(dir / "bad_quat.h5", "/poses/quat_xyzw[2]");

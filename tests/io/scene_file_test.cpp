@@ -215,6 +215,30 @@ TEST_F(SceneFileTest, RejectsStructuralMistakes) {
                 ::testing::HasSubstr("objects[0].box (must be a mapping)"));
 }
 
+TEST_F(SceneFileTest, RetroReflectiveIsABooleanDefaultingToFalse) {
+    const core::Scene scene = LoadScene(Write(R"(objects:
+  - name: sign
+    box: {size_m: [0.02, 0.6, 0.6]}
+    reflectivity: 0.8
+    retro_reflective: true
+  - name: wall
+    box: {size_m: [0.2, 4, 2]}
+)"));
+    ASSERT_EQ(scene.objects.size(), 2U);
+    EXPECT_TRUE(scene.objects[0].retro_reflective);
+    EXPECT_DOUBLE_EQ(scene.objects[0].reflectivity, 0.8);
+    EXPECT_FALSE(scene.objects[1].retro_reflective);
+    const std::string message = ErrorOf(R"(objects:
+  - name: a
+    box: {size_m: [1, 1, 1]}
+  - name: sign
+    box: {size_m: [1, 1, 1]}
+    retro_reflective: very
+)");
+    EXPECT_THAT(message, ::testing::HasSubstr((dir_ / "scene.yaml").string() + ":6:23: "));
+    EXPECT_THAT(message, ::testing::HasSubstr("objects[1].retro_reflective = very (wrong type)"));
+}
+
 TEST(SceneFile, MissingFileIsAnInputError) {
     EXPECT_THROW((void)LoadScene("/nonexistent/scene.yaml"), InputError);
 }

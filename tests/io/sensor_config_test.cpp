@@ -44,7 +44,7 @@ TEST(SensorConfig, DefaultsAreValidAndTheExampleHoldsThem) {
         listed.insert(e.first.as<std::string>());
     }
     EXPECT_EQ(written, listed);
-    EXPECT_EQ(written.size(), 46U);  // the 45 fields of Lms200Config, format split in two
+    EXPECT_EQ(written.size(), 48U);  // the 47 fields of Lms200Config, format split in two
 }
 
 TEST(SensorConfig, EmptyFileGivesTheDefaults) {
@@ -74,6 +74,8 @@ TEST(SensorConfig, WrittenYamlLoadsBackToTheSameConfig) {
     c.soft_edge_db = 2.5;
     c.low_signal_fraction = 0.25;
     c.min_range_m = 0.3;
+    c.retro_gain = 250.0;
+    c.saturation_peak = 3e4;
     c.noise_enabled = false;
     c.noise_sigma0_mm_units_m = 0.007;
     c.noise_sigma0_cm_units_m = 0.02;
@@ -119,7 +121,7 @@ TEST(SensorConfig, WrittenYamlLoadsBackToTheSameConfig) {
     for (std::string x, y; std::getline(a, x) && std::getline(d, y); ++lines) {
         EXPECT_NE(x, y);
     }
-    EXPECT_EQ(lines, 46);
+    EXPECT_EQ(lines, 48);
 }
 
 TEST(SensorConfig, UnknownKeyIsNamedWithLineAndColumn) {

@@ -124,6 +124,54 @@ TEST(DrawDomain, RatesStayWithinTheTableLimits) {
     }
 }
 
+TEST(GenerateScene, MaterialClassesIncludeRetroReflectors) {
+    SceneGenConfig config;
+    config.clutter_per_m2 = {2.0, 2.0};
+    int objects = 0;
+    int retro = 0;
+    int dark = 0;
+    for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+        const GeneratedScene scene = GenerateScene(config, seed, 2);
+        for (const GenObject& o : scene.objects) {
+            ++objects;
+            if (o.retro_reflective) {
+                ++retro;
+                EXPECT_GE(o.reflectivity, config.retro_reflectivity.min);
+                EXPECT_LE(o.reflectivity, config.retro_reflectivity.max);
+            } else if (o.reflectivity < config.normal_reflectivity.min) {
+                ++dark;
+            }
+        }
+    }
+    ASSERT_GT(objects, 400);
+    // Binomial shares: p_retro = 0.03, p_dark = 0.15 (4 sigma bounds).
+    const double n = objects;
+    EXPECT_NEAR(retro / n, config.p_retro, 4.0 * std::sqrt(0.03 * 0.97 / n));
+    EXPECT_NEAR(dark / n, config.p_dark, 4.0 * std::sqrt(0.15 * 0.85 / n));
+    // Every object a retro-reflector: the scene file says so.
+    config.p_dark = 0.0;
+    config.p_bright = 0.0;
+    config.p_retro = 1.0;
+    const GeneratedScene all = GenerateScene(config, 5, 2);
+    ASSERT_FALSE(all.objects.empty());
+    const std::string yaml = SceneYaml(all, "g.ply", {"rock_01.ply", "rock_02.ply"}, "");
+    std::size_t count = 0;
+    for (std::size_t at = yaml.find("retro_reflective: true"); at != std::string::npos;
+         at = yaml.find("retro_reflective: true", at + 1)) {
+        ++count;
+    }
+    EXPECT_EQ(count, all.objects.size());
+    // Shares beyond 1 are rejected naming the field.
+    config.p_dark = 0.5;
+    try {
+        config.Validate("spec.yaml");
+        FAIL() << "accepted p_dark + p_bright + p_retro = 1.5";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("p_dark"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("p_retro"), std::string::npos) << e.what();
+    }
+}
+
 TEST(DatasetSpec, DefaultsAreValid) { EXPECT_NO_THROW(DatasetSpec{}.Validate("spec.yaml")); }
 
 TEST(DatasetSpec, RejectsARangeOutsideItsBoundsNamingTheField) {

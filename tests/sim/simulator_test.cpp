@@ -281,6 +281,39 @@ TEST(Simulator, SixteenMetreModeWrapsAt17Metres) {
     EXPECT_GE(wrapped, 30);
 }
 
+// A retro-reflective wall at 2 m (inside the 3.16 m saturation range of a new reflector)
+// dazzles the beams that see it; the same wall as white paint, or the reflector at 5 m, ranges.
+TEST(Simulator, RetroReflectiveWallDazzlesWhenClose) {
+    const sensor_models::Lms200Model model{sensor_models::Lms200Config{}, 1};
+    for (const double x : {2.0, 5.0}) {
+        for (const bool retro : {true, false}) {
+            core::Scene scene;
+            core::SceneObject wall = Box("wall", {0.2, 1.0, 1.0}, {x + 0.1, 0.0, 0.0}, 1.0);
+            wall.retro_reflective = retro;
+            scene.objects.push_back(wall);
+            const World world(scene);
+            int dazzled = 0;
+            int ranged = 0;
+            for (std::uint64_t k = 0; k < 20; ++k) {
+                const ScanResult r = CastScanAt(world, model, core::Pose{}, 0.0, k);
+                const core::Beam& b = r.scan.beams[90];
+                if (b.raw == 8190) {
+                    EXPECT_EQ(b.status, core::BeamStatus::kDazzle);
+                    EXPECT_EQ(r.truth.labels[90], core::BeamLabel::kDazzled);
+                    ++dazzled;
+                } else if (b.status == core::BeamStatus::kOk &&
+                           r.truth.labels[90] == core::BeamLabel::kValid) {
+                    EXPECT_NEAR(b.range_m, x, 0.04);
+                    ++ranged;
+                }
+            }
+            const bool expect_dazzle = retro && x < 3.0;
+            EXPECT_GE(expect_dazzle ? dazzled : ranged, 19) << "x " << x << " retro " << retro;
+            EXPECT_EQ(expect_dazzle ? ranged : dazzled, 0) << "x " << x << " retro " << retro;
+        }
+    }
+}
+
 TEST(Simulator, NoNoiseOnNoReturnBeams) {
     const World world{core::Scene{}};
     const sensor_models::Lms200Model model{sensor_models::Lms200Config{}, 3};
