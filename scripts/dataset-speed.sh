@@ -42,4 +42,6 @@ awk -v n="$count" -v t1="$t1" -v t2="$t2" -v c1="$c1" -v c2="$c2" -v load="$load
     printf "mean sample: %.2f MB, largest %.2f MB\n", b / n / 1e6, big / 1e6;
     printf "1000 samples at the 2-rank rate (extrapolated): %.0f s (%.1f min), %.2f GB\n",
         1000 / r2, 1000 / r2 / 60, 1000 * b / n / 1e9;
+    printf "1000 samples on 2 idle cores (2-rank CPU per sample / 2, extrapolated): %.0f s (%.1f min)\n",
+        1000 * c2 / n / 2, 1000 * c2 / n / 2 / 60;
 }'
