@@ -36,10 +36,16 @@ ScanResult CastScanImpl(const World& world,
     const std::size_t m = model.SubrayCount();
     out.truth.labels.resize(n);
     out.truth.true_range_m.resize(n);
-    RayBatch rays;
+    // Per-thread buffers, reused scan after scan (every element read is written first).
+    thread_local RayBatch ray_buffer;
+    thread_local HitBatch hit_buffer;
+    thread_local std::vector<Eigen::Vector3d> axis_buffer;
+    RayBatch& rays = ray_buffer;
+    HitBatch& hits = hit_buffer;
+    std::vector<Eigen::Vector3d>& axes = axis_buffer;
     rays.Resize(n * m);
     rays.tmax_m = static_cast<float>(model.TraceRangeM());
-    std::vector<Eigen::Vector3d> axes(n);
+    axes.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         const sensor_models::PulseFrame frame =
             model.PulseBasis(scan_index, i, pose_at(i, out.scan.BeamTime(i)));
@@ -50,7 +56,6 @@ ScanResult CastScanImpl(const World& world,
                                 rays.Set(first + j, origin.cast<float>(), dir.cast<float>());
                             });
     }
-    HitBatch hits;
     if (m == 1) {
         world.CastBatchSingly(rays, hits);  // the ideal scanner: one ray per pulse
     } else {
