@@ -5,7 +5,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <numeric>
 #include <stdexcept>
 
@@ -114,6 +117,26 @@ std::vector<std::string> Gather(const DistributedSession& session,
     return out;
 }
 
+/// The paper-mapped training runs of this process, kept across rounds (growth, descent lines)
+/// so a run is simulated once per process and `a`; only for the direct filters (cas, cas_trail,
+/// cas_terrain: a pipeline may map the scans again). Results never depend on it.
+class RunCache {
+public:
+    std::shared_ptr<const MappedBenchRun> Find(const std::string& run, int a) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        const auto it = maps_.find({run, a});
+        return it != maps_.end() ? it->second : nullptr;
+    }
+    void Store(const std::string& run, int a, std::shared_ptr<const MappedBenchRun> map) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        maps_[{run, a}] = std::move(map);
+    }
+
+private:
+    std::mutex mutex_;
+    std::map<std::pair<std::string, int>, std::shared_ptr<const MappedBenchRun>> maps_;
+};
+
 /// Everything every run needs: settings, courses (training and held-out), trajectories.
 struct Context {
     explicit Context(const SweepOptions& o) : opt(o) {}
@@ -128,6 +151,7 @@ struct Context {
     std::optional<mapper::FilterMethod> method;  // nullopt: opt.filter via ScorePipelines
     int threads = 1;
     const DistributedSession* session = nullptr;
+    mutable RunCache cache;
 
     const Course& CourseOf(int number) const {
         const auto it = std::lower_bound(all_courses.begin(), all_courses.end(), number);
@@ -191,13 +215,13 @@ bool Applies(const SweepOptions& opt, const Point& p, const TrainRun& run) {
 /// scans again: a pre-filter or the Kalman mapper), without Table II shares.
 CasScore ScoreSwept(const Context& cx,
                     const MappedBenchRun& run,
-                    const SimulatedRun& sim,
+                    const SimulatedRun* sim,
                     const Course& course,
                     const mapper::FilterParams& params) {
     if (cx.method) {
         return ScoreCas(run, course, params, *cx.method);
     }
-    const BenchRun b = ScorePipelines(run, &sim, course, params, {cx.opt.filter}, nullptr);
+    const BenchRun b = ScorePipelines(run, sim, course, params, {cx.opt.filter}, nullptr);
     CasScore s;
     s.pi = b.filters.at(cx.opt.filter).pi;
     s.spikes = b.filters.at(cx.opt.filter).spikes;
@@ -242,25 +266,41 @@ std::map<Point, SweepPoint> TrainRound(const Context& cx,
             const TrainRun& run = runs[r];
             const Course& course = cx.CourseOf(run.course);
             const SimSetup setup = RunSetup(cx, opt, run.seed, run.speed, run.test, course);
-            const core::Trajectory poses = RigTrajectory(setup, core::Scene{});
-            const SimulatedRun sim = SimulateBenchRun(setup, course, poses);
-            std::map<int, MappedBenchRun> by_a;
+            std::optional<SimulatedRun> sim;  // simulated only when a map is not cached
+            std::map<int, std::shared_ptr<const MappedBenchRun>> by_a;
+            const auto mapped_for = [&](int a) -> const MappedBenchRun& {
+                if (by_a.count(a) == 0) {
+                    by_a[a] = cx.cache.Find(run.name, a);
+                }
+                if (!by_a[a] || !cx.method) {  // pipelines map `sim` again: need it anyway
+                    if (!sim) {
+                        sim = SimulateBenchRun(setup, course, RigTrajectory(setup, core::Scene{}));
+                    }
+                    if (!by_a[a]) {
+                        by_a[a] = std::make_shared<const MappedBenchRun>(
+                            MapBenchRun(setup, course, *sim, a));
+                        if (cx.method) {
+                            cx.cache.Store(run.name, a, by_a[a]);
+                        }
+                    }
+                }
+                return *by_a[a];
+            };
             std::string out = "R";
+            int min_a = std::numeric_limits<int>::max();
             for (const Point& p : points) {
                 if (!Applies(opt, p, run)) {
                     out += '0';
                     continue;
                 }
                 const int a = PointA(opt, p);
-                if (by_a.count(a) == 0) {
-                    by_a.emplace(a, MapBenchRun(setup, course, sim, a));
-                }
-                const MappedBenchRun& mapped = by_a.at(a);
+                min_a = std::min(min_a, a);
+                const MappedBenchRun& mapped = mapped_for(a);
                 out += '1';
-                PutScore(out, ScoreSwept(cx, mapped, sim, course,
+                PutScore(out, ScoreSwept(cx, mapped, sim ? &*sim : nullptr, course,
                                          RunFilterParams(mapped, detail::PointOverrides(opt, p))));
             }
-            PutStr(out, by_a.begin()->second.config_yaml);  // the smallest a's
+            PutStr(out, mapped_for(min_a).config_yaml);  // the smallest a of this round's points
             return out;
         } catch (const std::exception& e) {
             return std::string("E") + e.what();
@@ -435,7 +475,7 @@ std::vector<HeldOutRun> HeldOut(const Context& cx,
                 a == 3 ? chosen_run : MapBenchRun(setup, course, sim, 3);
             std::string out = "R";
             PutScore(out,
-                     ScoreSwept(cx, chosen_run, sim, course,
+                     ScoreSwept(cx, chosen_run, &sim, course,
                                 RunFilterParams(chosen_run, detail::PointOverrides(opt, best))));
             PutScore(out, ScoreCas(paper_run, course, RunFilterParams(paper_run, {})));
             return out;
