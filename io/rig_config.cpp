@@ -264,12 +264,12 @@ RigConfig LoadRigConfig(const std::string& path) {
     Reader reader(path, root);
     VisitRig(reader, config);
     reader.RejectUnknown();
-    for (const auto& violation : {config.table.FirstViolation(), config.vehicle.FirstViolation(),
-                                  config.pose_error.FirstViolation()}) {
-        if (violation) {
-            throw MakeInputError(reader.WhereOf(violation->field), violation->field,
-                                 violation->value, violation->rule);
-        }
+    try {  // the configs' own Validate(); the message gains the key's file:line:col
+        config.table.Validate();
+        config.vehicle.Validate();
+        config.pose_error.Validate();
+    } catch (const InputError& e) {
+        throw MakeInputError(reader.WhereOf(e.field()), e.field(), e.value(), e.rule());
     }
     return config;
 }

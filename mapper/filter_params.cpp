@@ -6,6 +6,7 @@
 #include <map>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/text.hpp"
 
 namespace casmap::mapper {
 namespace {
@@ -237,7 +238,7 @@ void FilterParams::SetAssignment(std::string_view assignment) {
 void FilterParams::Validate() const {
     const auto check = [](bool ok, const std::string& name, double v, const std::string& rule) {
         if (!ok) {
-            throw MakeInputError("filter parameters", name, std::to_string(v), rule);
+            throw MakeInputError("filter parameters", name, core::FormatNumber(v), rule);
         }
     };
     check(cas.k >= 1 && cas.k <= 7, "k", cas.k, "allowed: integer 1..7");

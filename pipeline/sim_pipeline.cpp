@@ -123,11 +123,11 @@ SimSetup ResolveSimSetup(const SimFlags& flags) {
     for (const std::string& a : flags.pose_error) {
         SetPoseError(s.pose_error, a);
     }
-    s.pose_error.Validate("pose_error");
-    if (s.vehicle) {
-        s.vehicle_config.Validate(s.rig_path.empty() ? "vehicle" : s.rig_path);
+    s.pose_error.Validate();
+    if (s.vehicle) {  // a rule broken by a flag's value (--speed) still names the rig file
+        s.vehicle_config.Validate(s.rig_path);
     } else {
-        s.table.Validate(s.rig_path.empty() ? "table" : s.rig_path);
+        s.table.Validate(s.rig_path);
     }
     if (!flags.sensor_path.empty()) {
         s.lms = io::LoadLms200Config(flags.sensor_path);

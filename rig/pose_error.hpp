@@ -27,9 +27,14 @@ struct PoseErrorConfig {
     double position_jitter_m = 0.0;
     double attitude_jitter_deg = 0.0;
 
-    /// The first broken rule, fields named "pose_error.<key>".
+    /// The one validation of a rig config (as Lms200Config::Validate): throws InputError
+    /// "[<where>: ]pose_error.<key> = <value> (<rule>)" for the first broken rule; io's rig loader
+    /// puts the key's file:line:col in front instead.
+    void Validate(const std::string& where = "") const;
+
+private:
+    // The first broken rule; Validate() throws it (an implementation detail, not an API).
     [[nodiscard]] std::optional<ConfigViolation> FirstViolation() const;
-    void Validate(const std::string& where = "pose error config") const;
 };
 
 /// The poses the mapper sees: `truth` with the seeded error added (a copy if disabled).

@@ -66,10 +66,14 @@ struct TableConfig {
     AngleProfile pitch_profile{ProfileShape::kSinusoid, 32.5, 7.0, 2.0, 0.0};
     ComplianceConfig compliance;
 
-    /// The first broken rule, fields named "table.<key>".
+    /// The one validation of a rig config (as Lms200Config::Validate): throws InputError
+    /// "[<where>: ]table.<key> = <value> (<rule>)" for the first broken rule; io's rig loader puts
+    /// the key's file:line:col in front instead.
+    void Validate(const std::string& where = "") const;
+
+private:
+    // The first broken rule; Validate() throws it (an implementation detail, not an API).
     [[nodiscard]] std::optional<ConfigViolation> FirstViolation() const;
-    /// Throws InputError "<where>: table.<key> = <value> (<rule>)".
-    void Validate(const std::string& where = "table config") const;
 };
 
 /// The joint commands of a motion (centre, amplitude, ...): T and TR hold mount_pitch_deg,

@@ -53,10 +53,14 @@ struct VehicleConfig {
     Eigen::Vector3d mount_xyz_m = Eigen::Vector3d(0.4, 0.0, 0.35);
     double mount_pitch_deg = 11.0;
 
-    /// The first broken rule, fields named "vehicle.<key>".
+    /// The one validation of a rig config (as Lms200Config::Validate): throws InputError
+    /// "[<where>: ]vehicle.<key> = <value> (<rule>)" for the first broken rule; io's rig loader
+    /// puts the key's file:line:col in front instead.
+    void Validate(const std::string& where = "") const;
+
+private:
+    // The first broken rule; Validate() throws it (an implementation detail, not an API).
     [[nodiscard]] std::optional<ConfigViolation> FirstViolation() const;
-    /// Throws InputError "<where>: vehicle.<key> = <value> (<rule>)".
-    void Validate(const std::string& where = "vehicle config") const;
 };
 
 /// One simulated drive: timed scanner poses and how many wheels touched ground at each sample.
