@@ -196,13 +196,6 @@ std::size_t SegmentLobes(std::span<const EchoSample> seg,
 
 }  // namespace
 
-std::uint64_t SplitMix64(std::uint64_t x) {
-    std::uint64_t z = x + 0x9E3779B97F4A7C15ULL;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-}
-
 PulseRng::PulseRng(std::uint64_t seed,
                    std::uint64_t scan_index,
                    std::uint32_t beam,
@@ -212,13 +205,6 @@ PulseRng::PulseRng(std::uint64_t seed,
     s = SplitMix64(s ^ ((static_cast<std::uint64_t>(beam) << 8) | stream));
     state_ = s;
 }
-
-std::uint64_t PulseRng::NextU64() {
-    state_ += 0x9E3779B97F4A7C15ULL;
-    return SplitMix64(state_);
-}
-
-double PulseRng::Uniform() { return static_cast<double>(NextU64() >> 11) * 0x1.0p-53; }
 
 double PulseRng::Normal() {
     // Marsaglia's polar method: no trigonometry; accepts pi/4 of the draws.

@@ -17,7 +17,13 @@ namespace casmap::sensor_models {
 inline constexpr std::size_t kMaxSubrays = 37;
 
 /// splitmix64 finaliser (Steele, Lea, Flood 2014): the mixing step of every seed below.
-[[nodiscard]] std::uint64_t SplitMix64(std::uint64_t x);
+/// Inline: it runs several times per pulse.
+[[nodiscard]] inline std::uint64_t SplitMix64(std::uint64_t x) {
+    std::uint64_t z = x + 0x9E3779B97F4A7C15ULL;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
 
 /// Deterministic random numbers for one pulse: a splitmix64 stream seeded from
 /// (run seed, scan index, beam index, stream tag), so results never depend on thread count
@@ -28,9 +34,12 @@ public:
              std::uint64_t scan_index,
              std::uint32_t beam,
              std::uint32_t stream);
-    [[nodiscard]] std::uint64_t NextU64();
+    [[nodiscard]] std::uint64_t NextU64() {
+        state_ += 0x9E3779B97F4A7C15ULL;
+        return SplitMix64(state_);
+    }
     /// Uniform in [0, 1).
-    [[nodiscard]] double Uniform();
+    [[nodiscard]] double Uniform() { return static_cast<double>(NextU64() >> 11) * 0x1.0p-53; }
     /// Standard normal (Box-Muller).
     [[nodiscard]] double Normal();
 
