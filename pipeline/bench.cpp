@@ -223,18 +223,24 @@ BenchResult RunBench(const BenchOptions& options, const core::ProgressFn& progre
                 filter_settings);
             const MappedBenchRun run = MapBenchRun(setup, course, sim, 3, params.cas.unknown);
             std::map<std::string, mapper::FilterParams> own;  // preset `pipelines:` sections
-            std::string own_yaml;
+            YAML::Emitter extra;  // preset and per-pipeline settings, after the filters
+            extra << YAML::BeginMap;
+            if (!options.preset.empty()) {
+                extra << YAML::Key << "preset" << YAML::Value << options.preset;
+            }
+            bool any_own = false;
             for (const auto& [pipeline, assignments] : pipeline_settings) {
                 if (std::find(options.pipelines.begin(), options.pipelines.end(), pipeline) ==
                     options.pipelines.end()) {
                     continue;  // a section for a pipeline this bench does not score
                 }
                 own[pipeline] = SetupFilterParams(setup, 3, params.cas.unknown, assignments);
-                std::string list;
-                for (const std::string& s : assignments) {
-                    list += (list.empty() ? "" : ", ") + s;
+                if (!any_own) {
+                    extra << YAML::Key << "pipeline_filter_settings" << YAML::Value
+                          << YAML::BeginMap;
+                    any_own = true;
                 }
-                own_yaml += "  " + pipeline + ": [" + list + "]\n";
+                extra << YAML::Key << pipeline << YAML::Value << YAML::Flow << assignments;
             }
             BenchRunRecord record;
             record.has_sheet = keep_maps;
@@ -243,11 +249,12 @@ BenchResult RunBench(const BenchOptions& options, const core::ProgressFn& progre
             record.run.scene = scene_run ? course.path : std::string();
             record.name = BenchRunName(record.run);
             record.config_yaml = run.config_yaml + FilterParamsYaml(params);
-            if (!options.preset.empty()) {
-                record.config_yaml += "preset: " + options.preset + "\n";
+            if (any_own) {
+                extra << YAML::EndMap;
             }
-            if (!own_yaml.empty()) {
-                record.config_yaml += "pipeline_filter_settings:\n" + own_yaml;
+            extra << YAML::EndMap;
+            if (!options.preset.empty() || any_own) {
+                record.config_yaml += io::EmittedText(extra);
             }
             return "R" + EncodeBenchRun(record);
         } catch (const std::exception& e) {
