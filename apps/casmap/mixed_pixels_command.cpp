@@ -49,8 +49,8 @@ pipeline::MixedPixelsResult RunWithFlagNames(const pipeline::MixedPixelsOptions&
     try {
         WithFlagNames(kFlags, [&] { result = pipeline::RunMixedPixels(o, threads); });
     } catch (const InputError& e) {
-        if (!e.where().empty()) {
-            throw;
+        if (!e.where().empty() || e.field().rfind("--", 0) != 0) {
+            throw;  // not about a flag (a file's error, a message-only error)
         }
         std::string rule = e.rule();  // "must be >= from_m" names another field
         for (const auto& [field, flag] :
