@@ -42,7 +42,7 @@ void CheckPixels(const core::MapF& map,
 
 bool NeedsCertainty(FilterMethod method) {
     return method == FilterMethod::kCas || method == FilterMethod::kCasTerrain ||
-           method == FilterMethod::kCasTrail;
+           method == FilterMethod::kCasTrail || method == FilterMethod::kCasMedian;
 }
 
 void CheckFilterInputs(FilterMethod method,

@@ -164,7 +164,7 @@ FilterMethod ParseFilterMethod(std::string_view name, const std::string& field) 
         }
     }
     throw MakeInputError("", field, std::string(name),
-                         "allowed: cas|wiener|average|median|cwm|cas_terrain|cas_trail");
+                         "allowed: cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median");
 }
 
 std::string_view ToString(FilterMethod method) {
@@ -183,6 +183,8 @@ std::string_view ToString(FilterMethod method) {
             return "cas_terrain";
         case FilterMethod::kCasTrail:
             return "cas_trail";
+        case FilterMethod::kCasMedian:
+            return "cas_median";
     }
     return "?";
 }
@@ -198,7 +200,7 @@ const std::vector<FilterMethod>& AllFilterMethodsWithVariants() {
     static const std::vector<FilterMethod> all = {FilterMethod::kCas,     FilterMethod::kWiener,
                                                   FilterMethod::kAverage, FilterMethod::kMedian,
                                                   FilterMethod::kCwm,     FilterMethod::kCasTerrain,
-                                                  FilterMethod::kCasTrail};
+                                                  FilterMethod::kCasTrail, FilterMethod::kCasMedian};
     return all;
 }
 

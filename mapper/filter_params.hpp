@@ -12,10 +12,11 @@ namespace casmap::mapper {
 /// The five filters of the paper's benchmark (Sec. III.A), then the wave-2 CAS variants
 /// (docs/paper-notes.md "Beyond the paper"): cas_terrain (heights relative to a local ground
 /// estimate) and cas_trail (removal also of low-certainty cells without support at their
-/// own height: the mixed-pixel trail beside a pole).
-enum class FilterMethod { kCas, kWiener, kAverage, kMedian, kCwm, kCasTerrain, kCasTrail };
+/// own height: the mixed-pixel trail beside a pole), cas_median (cas_trail's kept objects at
+/// their height, the median everywhere else).
+enum class FilterMethod { kCas, kWiener, kAverage, kMedian, kCwm, kCasTerrain, kCasTrail, kCasMedian };
 
-/// "cas|wiener|average|median|cwm|cas_terrain|cas_trail" -> method; throws InputError
+/// "cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median" -> method; throws InputError
 /// naming `field`.
 [[nodiscard]] FilterMethod ParseFilterMethod(std::string_view name,
                                              const std::string& field = "--method");

@@ -28,6 +28,8 @@ FilterResult RunFilter(FilterMethod method,
             p.support = Support::kHeight;
             return CasFilter(elevation, certainty, p);
         }
+        case FilterMethod::kCasMedian:
+            return CasMedianFilter(elevation, certainty, params);
     }
     return {};
 }

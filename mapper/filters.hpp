@@ -41,6 +41,15 @@ void CasFilterInto(const core::MapF& elevation,
                    const CasParams& params,
                    FilterResult& out);
 
+/// cas_median (mapper/cas_median.cpp): candidates = known cells cas_trail (CAS with
+/// support = height) left untouched that differ from the median (params.baseline.window) by more
+/// than support_tol_m; objects = candidates with the highest certainty among the candidates of
+/// their (2k+1)^2 window (ties: first in row-major order). Output: the raw height on objects,
+/// the median everywhere else. Classes = the cas_trail classes. Throws InputError as RunFilter.
+[[nodiscard]] FilterResult CasMedianFilter(const core::MapF& elevation,
+                                           const core::MapF& certainty,
+                                           const FilterParams& params);
+
 /// Baselines (mapper/baseline_filters.cpp). Every one replicates the edge pixels beyond the
 /// border (OpenCV BORDER_REPLICATE, the mode cv::medianBlur uses internally).
 [[nodiscard]] core::MapF WienerFilter(const core::MapF& elevation, const BaselineParams& params);

@@ -25,6 +25,7 @@ TEST(BenchPipelines, RegistryNamesAreStableAndThePaperFiveComeFirst) {
                                                "raw",
                                                "cas_terrain",
                                                "cas_trail",
+                                               "cas_median",
                                                "kalman",
                                                "kalman_median",
                                                "shadow",

@@ -1,0 +1,120 @@
+// cas_median on synthetic maps: a pole with a mixed-pixel trail and a halo (trail and halo
+// go, the pole stays at its height), a flat noisy floor (smoothed exactly as the median does),
+// bit-determinism.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+
+#include "casmap/core/input_error.hpp"
+#include "casmap/mapper/filters.hpp"
+
+namespace casmap::mapper {
+namespace {
+
+// Deterministic +-2 mm "noise" from a counter hash.
+float Noise(int i, int j) {
+    std::uint32_t x = static_cast<std::uint32_t>(i * 7919 + j * 104729 + 17);
+    x ^= x >> 13;
+    x *= 0x5bd1e995U;
+    x ^= x >> 15;
+    return (static_cast<float>(x % 1001) / 1000.0F - 0.5F) * 0.004F;
+}
+
+struct Maps {
+    core::MapF h = core::MapF(40, 40, 0.0F);
+    core::MapF c = core::MapF(40, 40, 36.0F);
+};
+
+// Well-observed noisy floor; a one-cell pole at (15, 20) seen 24 times; two halo cells beside
+// it holding the pole's top (seen 12 and 9 times); a trail of one-hit cells falling from the
+// pole's height to the floor.
+Maps PoleWithTrailAndHalo() {
+    Maps p;
+    for (int i = 0; i < 40; ++i) {
+        for (int j = 0; j < 40; ++j) {
+            p.h.at(i, j) = Noise(i, j);
+        }
+    }
+    p.h.at(15, 20) = 0.914F;
+    p.c.at(15, 20) = 240.0F;
+    p.h.at(15, 21) = 0.91F;
+    p.c.at(15, 21) = 120.0F;
+    p.h.at(14, 20) = 0.905F;
+    p.c.at(14, 20) = 90.0F;
+    const float trail[] = {0.72F, 0.55F, 0.41F, 0.3F, 0.17F};
+    for (int n = 0; n < 5; ++n) {
+        p.h.at(16 + n, 20) = trail[n];
+        p.c.at(16 + n, 20) = 3.0F;
+    }
+    return p;
+}
+
+TEST(CasMedian, RemovesTrailAndHaloKeepsThePole) {
+    const Maps p = PoleWithTrailAndHalo();
+    const FilterParams params;
+    const FilterResult trail = RunFilter(FilterMethod::kCasTrail, p.h, p.c, params);
+    EXPECT_EQ(trail.elevation.at(15, 21), p.h.at(15, 21));  // cas_trail keeps the halo
+    const FilterResult out = RunFilter(FilterMethod::kCasMedian, p.h, p.c, params);
+    const core::MapF median = MedianFilter(p.h, params.baseline);
+    EXPECT_EQ(out.elevation.at(15, 20), 0.914F);  // the pole, bit for bit
+    EXPECT_LT(median.at(15, 20), 0.05F);          // which the median alone deletes
+    EXPECT_LT(out.elevation.at(15, 21), 0.05F);   // the halo is gone
+    EXPECT_LT(out.elevation.at(14, 20), 0.05F);
+    for (int n = 0; n < 5; ++n) {
+        EXPECT_LT(out.elevation.at(16 + n, 20), 0.05F) << n;  // the trail is gone
+    }
+    // Every other cell is the median's, bit for bit.
+    int differ = 0;
+    for (std::size_t n = 0; n < p.h.data.size(); ++n) {
+        differ += std::memcmp(&median.data[n], &out.elevation.data[n], 4) != 0 ? 1 : 0;
+    }
+    EXPECT_EQ(differ, 1);
+    EXPECT_EQ(out.classes.data, trail.classes.data);  // classes are cas_trail's
+}
+
+TEST(CasMedian, SmoothsAFlatNoisyFloorAsTheMedian) {
+    Maps p;
+    for (int i = 0; i < 40; ++i) {
+        for (int j = 0; j < 40; ++j) {
+            p.h.at(i, j) = Noise(i, j);
+            p.c.at(i, j) = static_cast<float>(3 * (1 + (i + j) % 5));
+        }
+    }
+    const FilterParams params;
+    const FilterResult out = RunFilter(FilterMethod::kCasMedian, p.h, p.c, params);
+    const core::MapF median = MedianFilter(p.h, params.baseline);
+    ASSERT_EQ(out.elevation.data.size(), median.data.size());
+    EXPECT_EQ(std::memcmp(out.elevation.data.data(), median.data.data(), 4 * median.data.size()),
+              0);
+}
+
+TEST(CasMedian, KeepsAWideBoxTopAndIsBitDeterministic) {
+    Maps p = PoleWithTrailAndHalo();
+    for (int i = 25; i < 35; ++i) {
+        for (int j = 5; j < 15; ++j) {
+            p.h.at(i, j) = 0.2F + Noise(i, j);  // a 10 x 10 box: the median keeps its inside
+        }
+    }
+    FilterParams params;
+    params.Set("support_tol_m", "0.09");
+    const FilterResult a = RunFilter(FilterMethod::kCasMedian, p.h, p.c, params);
+    const FilterResult b = RunFilter(FilterMethod::kCasMedian, p.h, p.c, params);
+    EXPECT_NEAR(a.elevation.at(30, 10), 0.2F, 0.005F);
+    EXPECT_EQ(a.elevation.at(15, 20), 0.914F);
+    ASSERT_EQ(a.elevation.data.size(), b.elevation.data.size());
+    EXPECT_EQ(
+        std::memcmp(a.elevation.data.data(), b.elevation.data.data(), 4 * a.elevation.data.size()),
+        0);
+}
+
+TEST(CasMedian, NeedsTheCertaintyMap) {
+    const Maps p = PoleWithTrailAndHalo();
+    EXPECT_THROW((void)RunFilter(FilterMethod::kCasMedian, p.h, core::MapF(3, 3), FilterParams{}),
+                 InputError);
+    EXPECT_EQ(ParseFilterMethod("cas_median"), FilterMethod::kCasMedian);
+    EXPECT_EQ(ToString(FilterMethod::kCasMedian), "cas_median");
+}
+
+}  // namespace
+}  // namespace casmap::mapper
