@@ -1,0 +1,302 @@
+#include "casmap/pipeline/record.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/partial_scans.hpp"
+#include "casmap/drivers/pose_file.hpp"
+#include "casmap/io/run_file.hpp"
+#include "casmap/io/yaml_emit.hpp"
+
+namespace casmap::pipeline {
+namespace {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+/// "180,1" / "180,0.5" / "100,0.25" (degrees) -> Variant; InputError otherwise.
+drivers::Variant ParseVariant(const std::string& text) {
+    const std::string rule = "ANGLE,RES_DEG: 180,1 180,0.5 100,1 100,0.5 or 100,0.25";
+    const std::size_t comma = text.find(',');
+    try {
+        if (comma == std::string::npos) {
+            throw std::invalid_argument(text);
+        }
+        std::size_t used = 0;
+        const int angle = std::stoi(text.substr(0, comma), &used);
+        const std::string res_text = text.substr(comma + 1);
+        const double res = std::stod(res_text, &used);
+        if (used != res_text.size()) {
+            throw std::invalid_argument(text);
+        }
+        const drivers::Variant v{static_cast<std::uint16_t>(angle),
+                                 static_cast<std::uint16_t>(std::lround(res * 100.0))};
+        if (v.IsValid() && std::abs(res * 100.0 - v.resolution_cdeg) < 1e-6) {
+            return v;
+        }
+    } catch (const std::logic_error&) {
+        // falls through to the error below
+    }
+    throw MakeInputError("", "variant", text, rule);
+}
+
+namespace fs_check {
+/// The folder of `path` must exist and take a new file (checked by creating one).
+void CheckWritableFolder(const std::string& path, const std::string& field) {
+    const fs::path p(path);
+    const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+    if (p.filename().empty() || !fs::is_directory(dir)) {
+        throw MakeInputError(path, field, path, "folder " + dir.string() + " does not exist");
+    }
+    if (fs::is_directory(p)) {
+        throw MakeInputError(path, field, path, "is a folder, not a file name");
+    }
+    const fs::path probe = dir / (".casmap_probe_" + std::to_string(getpid()));
+    FILE* f = std::fopen(probe.c_str(), "w");
+    if (f == nullptr) {
+        throw MakeInputError(path, field, path, "folder " + dir.string() + " is not writable");
+    }
+    std::fclose(f);
+    fs::remove(probe);
+}
+}  // namespace fs_check
+
+/// Everything checked before the scanner is touched (issue #13 item 2).
+}  // namespace
+
+void CheckRecordOptions(const RecordOptions& opt) {
+    fs_check::CheckWritableFolder(opt.out, "out");
+    if (!(opt.timeout_s > 0.0) || !std::isfinite(opt.timeout_s)) {
+        throw MakeInputError("", "timeout_s", std::to_string(opt.timeout_s),
+                             "a finite number of seconds > 0");
+    }
+    if (!(opt.duration_s >= 0.0) || !std::isfinite(opt.duration_s)) {
+        throw MakeInputError("", "duration_s", std::to_string(opt.duration_s),
+                             "a finite number of seconds >= 0");
+    }
+    if (!opt.poses.empty()) {
+        // `casmap serve --poses-out` may write the file only once streaming began: it may be
+        // missing now, but then its folder must exist; if it exists it must be a file.
+        const fs::path p(opt.poses);
+        if (fs::exists(p)) {
+            if (!fs::is_regular_file(p)) {
+                throw MakeInputError(opt.poses, "poses", opt.poses, "is not a regular file");
+            }
+            if (access(p.c_str(), R_OK) != 0) {
+                throw MakeInputError(opt.poses, "poses", opt.poses, "is not readable");
+            }
+        } else {
+            const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+            if (!fs::is_directory(dir)) {
+                throw MakeInputError(opt.poses, "poses", opt.poses,
+                                     "neither the file nor its folder exists");
+            }
+        }
+    }
+}
+
+namespace {
+
+/// True for errors worth retrying at start-up: the device is absent or vanished, or no LMS
+/// answered (yet). A path that exists but is no terminal, or a refused setting, is final.
+bool Transient(const std::string& device, const std::exception& e) {
+    if (dynamic_cast<const drivers::SerialError*>(&e) != nullptr) {
+        return true;
+    }
+    std::error_code ec;
+    return !fs::exists(device, ec);
+}
+
+/// Connects, retrying with back-off (0.1 s doubling to 1 s) until `timeout_s` has passed.
+int ConnectWithRetry(drivers::Lms200Driver& driver,
+                     const RecordOptions& opt,
+                     const std::function<bool()>& stop) {
+    const Clock::time_point start = Clock::now();
+    double backoff_s = 0.1;
+    for (int attempt = 1;; ++attempt) {
+        try {
+            driver.Connect();
+            return attempt;
+        } catch (const std::exception& e) {
+            const double elapsed_s = std::chrono::duration<double>(Clock::now() - start).count();
+            if (!Transient(opt.device, e) || (stop && stop()) ||
+                elapsed_s + backoff_s > opt.timeout_s) {
+                if (!Transient(opt.device, e)) {
+                    throw;
+                }
+                char seconds[32];
+                std::snprintf(seconds, sizeof(seconds), "%g", opt.timeout_s);
+                throw MakeInputError(opt.device, "device", opt.device,
+                                     std::string("no LMS 200 ready within timeout_s ") + seconds +
+                                         " s (" + std::to_string(attempt) +
+                                         " attempts; last: " + e.what() + ")");
+            }
+            std::this_thread::sleep_for(std::chrono::duration<double>(backoff_s));
+            backoff_s = std::min(1.0, 2.0 * backoff_s);
+        }
+    }
+}
+
+std::string ConfigYaml(const RecordOptions& opt, const drivers::Lms200Driver& driver) {
+    const drivers::DeviceInfo& d = driver.info();
+    YAML::Emitter out;
+    out << YAML::Comment("casmap record: how this run was recorded");
+    out << YAML::BeginMap;
+    out << YAML::Key << "device" << YAML::Value << YAML::DoubleQuoted << opt.device;
+    out << YAML::Key << "baud" << YAML::Value << d.baud;
+    out << YAML::Key << "scanner" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "type" << YAML::Value << YAML::DoubleQuoted << d.type;
+    out << YAML::Key << "variant" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "angle_deg" << YAML::Value << d.variant.angle_deg;
+    out << YAML::Key << "resolution_cdeg" << YAML::Value << d.variant.resolution_cdeg;
+    out << YAML::EndMap;
+    out << YAML::Key << "measuring_mode" << YAML::Value << int{d.config.measuring_mode()};
+    out << YAML::Key << "units" << YAML::Value << (d.config.units() == 1 ? "mm" : "cm");
+    out << YAML::Key << "output_mode" << YAML::Value << YAML::DoubleQuoted << d.output.ToString();
+    out << YAML::Key << "realtime_indices" << YAML::Value
+        << (d.config.realtime_indices() ? "true" : "false");
+    out << YAML::EndMap;
+    out << YAML::Key << "stamps" << YAML::Value << YAML::DoubleQuoted
+        << std::string("system clock, s since 1970; beam 0 = ") +
+               (driver.synchronised() ? "sweep grid t0 + k T (scan clock)"
+                                      : "arrival - transmission - sweep");
+    out << YAML::Key << "poses" << YAML::Value;
+    if (opt.poses.empty()) {
+        io::EmitNull(out);
+    } else {
+        out << YAML::DoubleQuoted << opt.poses;
+    }
+    out << YAML::EndMap;
+    return io::EmittedText(out);
+}
+
+drivers::DriverConfig DriverConfigOf(const RecordOptions& opt) {
+    drivers::DriverConfig dc;
+    dc.device = opt.device;
+    dc.baud = opt.baud;
+    if (!opt.variant.empty()) {
+        dc.variant = ParseVariant(opt.variant);
+    }
+    dc.output = drivers::ParseOutputMode(opt.mode, "mode");
+    if (opt.realtime_indices) {
+        dc.config_changes.availability = drivers::ConfigBlock::kRealTimeIndices;
+    }
+    if (opt.stamps == "arrival") {
+        dc.stamps = drivers::StampMode::kArrival;
+    } else if (opt.stamps != "scan-clock") {
+        throw MakeInputError("", "stamps", opt.stamps, "scan-clock or arrival");
+    }
+    return dc;
+}
+
+/// Writes what was received; a failure with --poses still writes the scans (without poses),
+/// and a failing --out falls back to a file in the system's temporary folder.
+void SaveRun(const RecordOptions& opt, io::RunData& run) {
+    std::string poses_error;
+    if (!opt.poses.empty()) {  // read last: `casmap serve --poses-out` writes it on demand
+        try {
+            run.poses = drivers::ReadPoseFile(opt.poses);
+        } catch (const InputError& e) {
+            poses_error = e.what();
+        }
+    }
+    try {
+        io::WriteRunFile(opt.out, run);
+    } catch (const std::exception& e) {
+        const fs::path rescue =
+            fs::temp_directory_path() / ("casmap_record_" + std::to_string(getpid()) + ".h5");
+        io::WriteRunFile(rescue.string(), run);
+        throw std::runtime_error(std::string(e.what()) + "; the " +
+                                 std::to_string(run.scans.size()) +
+                                 " scans received were saved to " + rescue.string());
+    }
+    if (!poses_error.empty()) {
+        throw std::runtime_error(poses_error + "; the " + std::to_string(run.scans.size()) +
+                                 " scans received were saved without poses to " + opt.out);
+    }
+}
+
+}  // namespace
+
+void Record(const RecordOptions& opt,
+            const std::function<bool()>& stop_requested,
+            const std::function<void(const RecordStats&)>& report) {
+    CheckRecordOptions(opt);
+    io::RunData run;
+    drivers::Lms200Driver driver(DriverConfigOf(opt));
+    const int attempts = ConnectWithRetry(driver, opt, stop_requested);
+    drivers::PartialScanAssembler assembler(driver.info().variant);
+    const bool partial = driver.info().output.kind == drivers::OutputKind::kPartial;
+    const Clock::time_point start = Clock::now();
+    Clock::time_point last_scan = start;
+    Clock::time_point first_arrival;
+    Clock::time_point last_arrival;
+    bool timed_out = false;
+    while (!(stop_requested && stop_requested())) {
+        if (opt.scans > 0 && run.scans.size() >= opt.scans) {
+            break;
+        }
+        const Clock::time_point now = Clock::now();
+        if (opt.duration_s > 0.0 &&
+            std::chrono::duration<double>(now - start).count() >= opt.duration_s) {
+            break;
+        }
+        if (std::chrono::duration<double>(now - last_scan).count() >= opt.timeout_s) {
+            timed_out = true;
+            break;
+        }
+        std::optional<core::Scan> scan = driver.NextScan(0.2);
+        if (!scan) {
+            continue;
+        }
+        last_scan = Clock::now();
+        if (partial) {  // one geometry per run: join the turns of each complete scan
+            scan = assembler.Add(*scan);
+            if (!scan) {
+                continue;
+            }
+        }
+        if (run.scans.empty()) {
+            first_arrival = last_scan;
+        }
+        last_arrival = last_scan;
+        run.scans.push_back(std::move(*scan));
+    }
+    driver.Close();
+    const drivers::DriverCounters c = driver.counters();
+    const double span_s = std::chrono::duration<double>(last_arrival - first_arrival).count();
+    const double rate = run.scans.size() >= 2 && span_s > 0.0
+                            ? static_cast<double>(run.scans.size() - 1) / span_s
+                            : 0.0;
+    if (report) {
+        report(RecordStats{run.scans.size(), c, attempts, rate});
+    }
+    if (!run.scans.empty()) {
+        run.format = driver.info().format;
+        run.config_yaml = ConfigYaml(opt, driver);
+        SaveRun(opt, run);
+    }
+    if (run.scans.empty() && !timed_out) {
+        throw std::runtime_error(opt.device + ": no scan received; nothing written");
+    }
+    if (timed_out) {
+        char seconds[32];
+        std::snprintf(seconds, sizeof(seconds), "%g", opt.timeout_s);
+        throw std::runtime_error(opt.device + ": no scan for " + seconds + " s; " +
+                                 (run.scans.empty()
+                                      ? std::string("nothing written")
+                                      : "wrote the " + std::to_string(run.scans.size()) +
+                                            " scans received to " + opt.out));
+    }
+}
+
+}  // namespace casmap::pipeline

@@ -1,0 +1,87 @@
+// pipeline::Record (what `casmap record` runs) called directly: the checks done before
+// connecting name the options' fields, and a short recording from the virtual LMS 200 is
+// reported and written.
+#include "casmap/pipeline/record.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "../drivers/test_source.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/drivers/virtual_lms200.hpp"
+#include "casmap/io/run_file.hpp"
+
+namespace casmap::pipeline {
+namespace {
+namespace fs = std::filesystem;
+
+std::string FieldOfError(const RecordOptions& o) {
+    try {
+        CheckRecordOptions(o);
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
+        return e.field();
+    }
+    return "";
+}
+
+TEST(Record, ChecksNameTheOptionsFields) {
+    const fs::path dir = fs::path(testing::TempDir()) / "casmap_pipeline_record_checks";
+    fs::create_directories(dir);
+    RecordOptions o;
+    o.device = "/nonexistent/lms";
+    o.out = (dir / "run.h5").string();
+    EXPECT_EQ(FieldOfError(o), "");
+    o.out = "/nonexistent/run.h5";
+    EXPECT_EQ(FieldOfError(o), "out");
+    o.out = (dir / "run.h5").string();
+    o.timeout_s = 0.0;
+    EXPECT_EQ(FieldOfError(o), "timeout_s");
+    o.timeout_s = 1.0;
+    o.poses = "/nonexistent/poses.txt";
+    EXPECT_EQ(FieldOfError(o), "poses");
+    o.poses.clear();
+    o.variant = "180,2";  // checked before connecting, by Record
+    try {
+        Record(o, {}, {});
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.field(), "variant");
+    }
+    EXPECT_FALSE(fs::exists(dir / "run.h5"));
+}
+
+TEST(Record, ReportsThenWritesWhatWasReceived) {
+    const fs::path dir = fs::path(testing::TempDir()) / "casmap_pipeline_record_run";
+    fs::create_directories(dir);
+    drivers::testing::NumberedSource source;
+    drivers::VirtualLms200Config vc;
+    vc.link_path = "/tmp/casmap_pipeline_record_" + std::to_string(getpid());
+    drivers::VirtualLms200 scanner(vc, source);
+    scanner.Start();
+    RecordOptions o;
+    o.device = vc.link_path;
+    o.out = (dir / "run.h5").string();
+    o.scans = 3;
+    o.timeout_s = 20.0;
+    RecordStats stats;
+    bool file_existed_at_report = true;
+    Record(o, {}, [&](const RecordStats& s) {
+        stats = s;
+        file_existed_at_report = fs::exists(o.out);
+    });
+    scanner.Stop();
+    EXPECT_EQ(stats.scans, 3U);
+    EXPECT_GE(stats.connect_attempts, 1);
+    EXPECT_GT(stats.counters.bytes, 0U);
+    EXPECT_FALSE(file_existed_at_report);  // reported before the file is written
+    const io::RunData run = io::ReadRunFile(o.out);
+    EXPECT_EQ(run.scans.size(), 3U);
+    EXPECT_NE(run.config_yaml.find("casmap record"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace casmap::pipeline
