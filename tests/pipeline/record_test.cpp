@@ -30,6 +30,7 @@ std::string FieldOfError(const RecordOptions& o) {
 
 TEST(Record, ChecksNameTheOptionsFields) {
     const fs::path dir = fs::path(testing::TempDir()) / "casmap_pipeline_record_checks";
+    fs::remove_all(dir);
     fs::create_directories(dir);
     RecordOptions o;
     o.device = "/nonexistent/lms";
@@ -56,6 +57,7 @@ TEST(Record, ChecksNameTheOptionsFields) {
 
 TEST(Record, ReportsThenWritesWhatWasReceived) {
     const fs::path dir = fs::path(testing::TempDir()) / "casmap_pipeline_record_run";
+    fs::remove_all(dir);
     fs::create_directories(dir);
     drivers::testing::NumberedSource source;
     drivers::VirtualLms200Config vc;
