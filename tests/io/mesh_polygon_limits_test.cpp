@@ -79,5 +79,24 @@ TEST(MeshPolygonLimits, PolygonsWithinTheLimitsAreStillTriangulated) {
     EXPECT_EQ(quads.triangles.size(), 2U);
 }
 
+// A PLY header without its end_header line (fuzz finding: 477 bytes kept assimp's PLY reader
+// busy for over 10 s) is rejected before assimp reads it; a complete header still reads.
+TEST(MeshPolygonLimits, APlyHeaderWithoutEndHeaderIsRejected) {
+    const std::string head =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\n";
+    const std::string body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    std::string message = "no error";
+    try {
+        (void)ImportMeshFromMemory(head + body, "ply", "cut.ply", Eigen::Vector3d::Ones());
+    } catch (const InputError& e) {
+        message = e.what();
+    }
+    EXPECT_THAT(message, HasSubstr("cut.ply: PLY header (has no end_header line"));
+    const core::MeshShape shape = ImportMeshFromMemory(head + "end_header\n" + body, "ply",
+                                                       "whole.ply", Eigen::Vector3d::Ones());
+    EXPECT_EQ(shape.triangles.size(), 1u);
+}
+
 }  // namespace
 }  // namespace casmap::io
