@@ -14,7 +14,16 @@ namespace casmap::mapper {
 /// estimate) and cas_trail (removal also of low-certainty cells without support at their
 /// own height: the mixed-pixel trail beside a pole), cas_median (cas_trail's kept objects at
 /// their height, the median everywhere else).
-enum class FilterMethod { kCas, kWiener, kAverage, kMedian, kCwm, kCasTerrain, kCasTrail, kCasMedian };
+enum class FilterMethod {
+    kCas,
+    kWiener,
+    kAverage,
+    kMedian,
+    kCwm,
+    kCasTerrain,
+    kCasTrail,
+    kCasMedian
+};
 
 /// "cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median" -> method; throws InputError
 /// naming `field`.

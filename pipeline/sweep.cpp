@@ -178,8 +178,7 @@ const std::vector<std::string>& SweepableParameters() {
 }
 
 const std::vector<std::string>& SweepableFilters() {
-    static const std::vector<std::string> names = {"cas", "cas_trail", "cas_terrain",
-                                                   "cas_median"};
+    static const std::vector<std::string> names = {"cas", "cas_trail", "cas_terrain", "cas_median"};
     return names;
 }
 

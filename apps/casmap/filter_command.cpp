@@ -1,4 +1,5 @@
-// casmap filter --method cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median --elevation H.tiff
+// casmap filter --method cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median --elevation
+// H.tiff
 // [--certainty C.tiff]
 //               [--preset NAME] [--set NAME=VALUE]... --out OUT.tiff [--threads N]
 // Filters an elevation map (32-bit float TIFF, metres) with one of the paper's five filters and
@@ -117,7 +118,8 @@ void AddFilterCommand(CLI::App& app, CommonOptions& common) {
     auto opt = std::make_shared<FilterOptions>();
     CLI::App* sub =
         app.add_subcommand("filter", "Filter an elevation map: CAS (Eq. 7-10) or a 5x5 baseline");
-    sub->add_option("--method", opt->method, "cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median")
+    sub->add_option("--method", opt->method,
+                    "cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median")
         ->required();
     sub->add_option("--elevation", opt->elevation, "elevation map H, 32-bit float TIFF (m)")
         ->required();
