@@ -41,6 +41,16 @@ double ParseRange(
     return v;
 }
 
+/// A number strictly between lo and hi.
+double ParseBetween(std::string_view name, std::string_view value, double lo, double hi) {
+    const double v = ParseNumber(name, value);
+    if (!(v > lo && v < hi)) {
+        Reject(name, value,
+               "allowed: > " + core::FormatNumber(lo) + " and < " + core::FormatNumber(hi));
+    }
+    return v;
+}
+
 int ParseInt(std::string_view name, std::string_view value, int lo, int hi) {
     int v = 0;
     const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
@@ -138,6 +148,59 @@ const std::map<std::string, Setter, std::less<>>& Setters() {
          }},
         {"noise", [](FilterParams& p, auto n,
                      auto v) { p.baseline.noise = ParseRange(n, v, 0, kInf, false); }},
+        // --- scan pre-filters (scan_filters.hpp) and the Kalman mapper mode (kalman_noise.hpp)
+        {"shadow.min_angle_deg",
+         [](FilterParams& p, auto n, auto v) {
+             p.shadow.min_angle_deg = ParseBetween(n, v, 0, 90);
+         }},
+        {"shadow.max_angle_deg",
+         [](FilterParams& p, auto n, auto v) {
+             p.shadow.max_angle_deg = ParseBetween(n, v, 90, 180);
+         }},
+        {"shadow.window",
+         [](FilterParams& p, auto n, auto v) { p.shadow.window = ParseInt(n, v, 1, 10); }},
+        {"shadow.neighbors",
+         [](FilterParams& p, auto n, auto v) { p.shadow.neighbors = ParseInt(n, v, 0, 20); }},
+        {"shadow.remove_start_point",
+         [](FilterParams& p, auto n, auto v) {
+             p.shadow.remove_start_point = ParseChoice<bool>(n, v, {{"off", false}, {"on", true}});
+         }},
+        {"range_jump.jump_min_m",
+         [](FilterParams& p, auto n, auto v) {
+             p.range_jump.jump_min_m = ParseRange(n, v, 0, kInf, true);
+         }},
+        {"range_jump.margin_m",
+         [](FilterParams& p, auto n, auto v) {
+             p.range_jump.margin_m = ParseRange(n, v, 0, kInf, false);
+         }},
+        {"range_jump.chord_tol_m",
+         [](FilterParams& p, auto n, auto v) {
+             p.range_jump.chord_tol_m = ParseRange(n, v, 0, kInf, false);
+         }},
+        {"kalman.range_sigma_m",
+         [](FilterParams& p, auto n, auto v) {
+             p.kalman.range_sigma_m = ParseRange(n, v, 0, kInf, false);
+         }},
+        {"kalman.beam_constant_m",
+         [](FilterParams& p, auto n, auto v) {
+             p.kalman.beam_constant_m = ParseRange(n, v, 0, kInf, false);
+         }},
+        {"kalman.beam_angle_rad",
+         [](FilterParams& p, auto n, auto v) {
+             p.kalman.beam_angle_rad = ParseRange(n, v, 0, kInf, false);
+         }},
+        {"kalman.min_variance_m2",
+         [](FilterParams& p, auto n, auto v) {
+             p.kalman.min_variance_m2 = ParseRange(n, v, 0, kInf, true);
+         }},
+        {"kalman.mahalanobis_gate",
+         [](FilterParams& p, auto n, auto v) {
+             p.kalman.mahalanobis_gate = ParseRange(n, v, 0, kInf, true);
+         }},
+        {"kalman.multi_height_noise_m2",
+         [](FilterParams& p, auto n, auto v) {
+             p.kalman.multi_height_noise_m2 = ParseRange(n, v, 0, kInf, false);
+         }},
         {"center_weight",
          [](FilterParams& p, auto n, auto v) {
              const int w = ParseInt(n, v, 1, 99);
@@ -271,6 +334,9 @@ void FilterParams::Validate() const {
           baseline.noise.value_or(0.0), "allowed: >= 0");
     check(baseline.center_weight >= 1 && baseline.center_weight % 2 == 1, "center_weight",
           baseline.center_weight, "allowed: odd integer >= 1");
+    shadow.Validate();  // InputError naming shadow.<field>, range_jump.<field>, kalman.<field>
+    range_jump.Validate();
+    kalman.Validate();
 }
 
 const std::vector<std::string>& FilterParams::Names() {

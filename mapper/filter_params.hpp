@@ -5,6 +5,8 @@
 #include <string_view>
 #include <vector>
 
+#include "casmap/mapper/kalman_noise.hpp"
+#include "casmap/mapper/scan_filters.hpp"
 #include "casmap/mapper/unknown.hpp"
 
 namespace casmap::mapper {
@@ -86,10 +88,18 @@ struct BaselineParams {
     Unknown unknown = Unknown::kZero;  // kNaN: statistics over the window's known cells only
 };
 
-/// Every filter parameter, settable by name (`--set NAME=VALUE`).
+/// Every filter parameter, settable by name (`--set NAME=VALUE`): the map filters' (CAS and
+/// its variants, the baselines) and the mapping stages' a named pipeline may use: the scan
+/// pre-filters (shadow.<field>, range_jump.<field>) and the Kalman mapper mode's noise model
+/// (kalman.<field>). A stage's parameters matter only to pipelines that run the stage.
 struct FilterParams {
     CasParams cas;
     BaselineParams baseline;
+    ShadowFilterConfig shadow;   // shadow.min_angle_deg, .max_angle_deg, .window, .neighbors,
+                                 // .remove_start_point
+    RangeJumpConfig range_jump;  // range_jump.jump_min_m, .margin_m, .chord_tol_m
+    KalmanNoiseConfig kalman;    // kalman.range_sigma_m, .beam_constant_m, .beam_angle_rad,
+                                 // .min_variance_m2, .mahalanobis_gate, .multi_height_noise_m2
 
     /// Sets one parameter by name (`unknown` sets cas.unknown and baseline.unknown); throws
     /// InputError for an unknown name or a value out of range, naming "--set", the parameter, the
@@ -97,7 +107,9 @@ struct FilterParams {
     void Set(std::string_view name, std::string_view value);
     /// Parses "NAME=VALUE" and calls Set.
     void SetAssignment(std::string_view assignment);
-    /// Throws InputError on inconsistent settings.
+    /// Throws InputError on inconsistent settings (cross-field rules such as range_jump.margin_m
+    /// < range_jump.jump_min_m / 2 are checked here, not by Set, so the order of Set calls
+    /// does not matter).
     void Validate() const;
     /// Names accepted by Set.
     [[nodiscard]] static const std::vector<std::string>& Names();

@@ -20,11 +20,8 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 }  // namespace
 
-void KalmanMapperConfig::Validate() const {
-    grid.Validate();
+void KalmanNoiseConfig::Validate() const {
     const auto finite_ge = [](double v, double lo) { return std::isfinite(v) && v >= lo; };
-    Require(finite_ge(scan_period_s, 0.0) && scan_period_s > 0.0, "kalman.scan_period_s",
-            scan_period_s, "allowed: > 0");
     Require(finite_ge(range_sigma_m, 0.0), "kalman.range_sigma_m", range_sigma_m, "allowed: >= 0");
     Require(finite_ge(beam_constant_m, 0.0), "kalman.beam_constant_m", beam_constant_m,
             "allowed: >= 0");
@@ -36,6 +33,13 @@ void KalmanMapperConfig::Validate() const {
             mahalanobis_gate, "allowed: > 0");
     Require(finite_ge(multi_height_noise_m2, 0.0), "kalman.multi_height_noise_m2",
             multi_height_noise_m2, "allowed: >= 0");
+}
+
+void KalmanMapperConfig::Validate() const {
+    grid.Validate();
+    Require(std::isfinite(scan_period_s) && scan_period_s > 0.0, "kalman.scan_period_s",
+            scan_period_s, "allowed: > 0");
+    KalmanNoiseConfig::Validate();
     Require(a >= 1, "kalman.a", a, "allowed: integer >= 1");
 }
 

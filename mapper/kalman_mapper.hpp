@@ -16,28 +16,20 @@
 #include "casmap/core/scan.hpp"
 #include "casmap/core/trajectory.hpp"
 #include "casmap/mapper/beam_batch.hpp"
+#include "casmap/mapper/kalman_noise.hpp"
 #include "casmap/mapper/terrain_mapper.hpp"
 #include "casmap/mapper/unknown.hpp"
 
 namespace casmap::mapper {
 
-/// Kalman elevation mapper settings. The range-dependent height variance of one point is the
-/// LMS 200 noise model of elevation_mapping's laser sensor processor: along the beam the
-/// datasheet's statistical error, across it the beam's spread growing with range,
-///   var_z = u_z^2 range_sigma^2 + (1 - u_z^2) (beam_constant + beam_angle * l)^2,
-/// u_z the unit beam direction's world z, l the range.
-struct KalmanMapperConfig {
+/// Kalman elevation mapper settings: the noise model and gate (KalmanNoiseConfig, settable as
+/// the filter parameters kalman.<field>) and what the run decides (grid, scan period, a, unknown).
+struct KalmanMapperConfig : KalmanNoiseConfig {
     core::GridGeometry grid;
-    double scan_period_s = 1.0 / 75.0;    // pose one scan earlier (shared Eq. 1-4 batch)
-    double range_sigma_m = 0.005;         // LMS 200 statistical error, 1 sigma (mm mode)
-    double beam_constant_m = 0.0;         // lateral spread at zero range
-    double beam_angle_rad = 0.0022;       // half the LMS 200's ~0.25 deg beam divergence
-    double min_variance_m2 = 1e-6;        // floor of a cell's variance (1 mm sigma)
-    double mahalanobis_gate = 2.5;        // elevation_mapping's default threshold
-    double multi_height_noise_m2 = 1e-4;  // variance added per measurement outside the gate
-    int a = 3;                            // certainty increment per fused scan (as Eq. 5's a)
-    Unknown unknown = Unknown::kZero;     // never-observed elevation: 0 (paper) or NaN
-    void Validate() const;                // throws InputError naming the field ("kalman.<field>")
+    double scan_period_s = 1.0 / 75.0;  // pose one scan earlier (shared Eq. 1-4 batch)
+    int a = 3;                          // certainty increment per fused scan (as Eq. 5's a)
+    Unknown unknown = Unknown::kZero;   // never-observed elevation: 0 (paper) or NaN
+    void Validate() const;              // throws InputError naming the field ("kalman.<field>")
 };
 
 /// Elevation (fused height), certainty (a per fused scan) and variance (m^2; NaN where

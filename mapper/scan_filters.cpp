@@ -32,11 +32,11 @@ void Require(bool ok, const std::string& field, double value, const std::string&
 
 void ShadowFilterConfig::Validate() const {
     Require(std::isfinite(min_angle_deg) && min_angle_deg > 0.0 && min_angle_deg < 90.0,
-            "shadow_filter.min_angle_deg", min_angle_deg, "allowed: > 0 and < 90");
+            "shadow.min_angle_deg", min_angle_deg, "allowed: > 0 and < 90");
     Require(std::isfinite(max_angle_deg) && max_angle_deg > 90.0 && max_angle_deg < 180.0,
-            "shadow_filter.max_angle_deg", max_angle_deg, "allowed: > 90 and < 180");
-    Require(window >= 1 && window <= 10, "shadow_filter.window", window, "allowed: integer 1..10");
-    Require(neighbors >= 0 && neighbors <= 20, "shadow_filter.neighbors", neighbors,
+            "shadow.max_angle_deg", max_angle_deg, "allowed: > 90 and < 180");
+    Require(window >= 1 && window <= 10, "shadow.window", window, "allowed: integer 1..10");
+    Require(neighbors >= 0 && neighbors <= 20, "shadow.neighbors", neighbors,
             "allowed: integer 0..20");
 }
 

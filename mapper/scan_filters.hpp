@@ -25,7 +25,7 @@ struct ShadowFilterConfig {
     int window = 1;                // neighbours compared on each side
     int neighbors = 1;             // beams on each side rejected when farther than p_i
     bool remove_start_point = false;
-    void Validate() const;  // throws InputError naming the field ("shadow_filter.<field>")
+    void Validate() const;  // throws InputError naming the field ("shadow.<field>")
 };
 
 /// Range-jump mixed-pixel test: beam i is rejected when its two direct neighbours' ranges

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 #include <variant>
 
@@ -86,6 +87,32 @@ std::vector<std::string> KeptPoles(const core::MapF& map, const std::vector<Pole
     return kept;
 }
 
+/// The mapping-stage parameters a pipeline's map depends on, as exact bytes ("" for the paper
+/// mapper without pre-filter): two pipelines with equal keys share one map.
+std::string StageKey(const PipelineSpec& spec, const mapper::FilterParams& p) {
+    std::string key;
+    const auto put = [&key](double v) { key.append(reinterpret_cast<const char*>(&v), sizeof v); };
+    if (spec.prefilter == Prefilter::kShadow) {
+        put(p.shadow.min_angle_deg);
+        put(p.shadow.max_angle_deg);
+        put(p.shadow.window);
+        put(p.shadow.neighbors);
+        put(p.shadow.remove_start_point ? 1.0 : 0.0);
+    } else if (spec.prefilter == Prefilter::kRangeJump) {
+        put(p.range_jump.jump_min_m);
+        put(p.range_jump.margin_m);
+        put(p.range_jump.chord_tol_m);
+    }
+    if (spec.mode == MapperMode::kKalman) {
+        const mapper::KalmanNoiseConfig& k = p.kalman;
+        for (const double v : {k.range_sigma_m, k.beam_constant_m, k.beam_angle_rad,
+                               k.min_variance_m2, k.mahalanobis_gate, k.multi_height_noise_m2}) {
+            put(v);
+        }
+    }
+    return key;
+}
+
 }  // namespace
 
 BenchRun ScorePipelines(const MappedBenchRun& run,
@@ -118,14 +145,25 @@ BenchRun ScorePipelines(const MappedBenchRun& run,
         mapper::EvaluateFilter({raw, {}}, raw, course.truth, region);
     out.raw_rmse_m = raw_metrics.raw_rmse_m;
     out.raw_spikes = raw_metrics.raw_spikes;
-    // Maps of the other mapper modes / pre-filters, each made once from the same scans.
-    std::map<std::pair<MapperMode, Prefilter>, MappedRun> maps;
+    // Maps of the other mapper modes / pre-filters, each made once per stage parameters from
+    // the same scans (a preset section may give one pipeline its own pre-filter settings).
+    using MapKey = std::tuple<MapperMode, Prefilter, std::string>;
+    std::map<MapKey, MappedRun> maps;
+    const auto params_of = [&](const std::string& name) -> const mapper::FilterParams& {
+        const auto it = own.find(name);
+        return it == own.end() ? params : it->second;
+    };
+    const auto key_of = [&](const PipelineSpec& spec) {
+        return MapKey{spec.mode, spec.prefilter, StageKey(spec, params_of(spec.name))};
+    };
+    const auto is_plain = [&](const PipelineSpec& spec) {
+        return spec.mode == run.mapped.settings.mode &&
+               spec.prefilter == run.mapped.settings.prefilter && spec.mode == MapperMode::kPaper &&
+               spec.prefilter == Prefilter::kNone;
+    };
     for (const std::string& name : pipelines) {
         const PipelineSpec& spec = FindPipeline(name, "pipelines");
-        const auto key = std::make_pair(spec.mode, spec.prefilter);
-        const bool plain = spec.mode == run.mapped.settings.mode &&
-                           spec.prefilter == run.mapped.settings.prefilter;
-        if (plain || maps.count(key) != 0) {
+        if (is_plain(spec) || maps.count(key_of(spec)) != 0) {
             continue;
         }
         if (sim == nullptr) {
@@ -138,12 +176,13 @@ BenchRun ScorePipelines(const MappedBenchRun& run,
         settings.delta_l_m = run.mapped.config.delta_l_m;
         settings.mode = spec.mode;
         settings.prefilter = spec.prefilter;
-        maps.emplace(key, MapScans(sim->run.scans, sim->run.poses, run.setup.grid, settings));
+        SetStageParams(settings, params_of(name));
+        maps.emplace(key_of(spec),
+                     MapScans(sim->run.scans, sim->run.poses, run.setup.grid, settings));
     }
     for (const std::string& name : pipelines) {
         const PipelineSpec& spec = FindPipeline(name, "pipelines");
-        const auto it = maps.find({spec.mode, spec.prefilter});
-        const MappedRun& map = it != maps.end() ? it->second : run.mapped;
+        const MappedRun& map = is_plain(spec) ? run.mapped : maps.at(key_of(spec));
         const auto own_params = own.find(name);
         const bool shared = own_params == own.end();
         mapper::FilterResult result;

@@ -84,6 +84,55 @@ void MapSettings::Validate() const {
     }
     shadow.Validate();
     range_jump.Validate();
+    kalman.Validate();
+}
+
+void SetStageParams(MapSettings& settings, const mapper::FilterParams& params) {
+    settings.shadow = params.shadow;
+    settings.range_jump = params.range_jump;
+    settings.kalman = params.kalman;
+}
+
+bool IsStageParameter(std::string_view name) {
+    return name.starts_with("shadow.") || name.starts_with("range_jump.") ||
+           name.starts_with("kalman.");
+}
+
+void ApplyStageSettings(MapSettings& settings,
+                        const std::vector<std::string>& assignments,
+                        const std::string& field) {
+    mapper::FilterParams params;
+    params.shadow = settings.shadow;
+    params.range_jump = settings.range_jump;
+    params.kalman = settings.kalman;
+    for (const std::string& a : assignments) {
+        const std::size_t eq = a.find('=');
+        if (eq == std::string::npos || eq == 0) {
+            throw MakeInputError("", field, a, "expected NAME=VALUE");
+        }
+        const std::string name = a.substr(0, eq);
+        if (!IsStageParameter(name)) {
+            throw MakeInputError("", field, a,
+                                 "not a mapping-stage parameter; allowed: shadow.<field>, "
+                                 "range_jump.<field>, kalman.<field> (map filters' parameters "
+                                 "belong to casmap filter / bench)");
+        }
+        const bool used = name.starts_with("shadow.") ? settings.prefilter == Prefilter::kShadow
+                          : name.starts_with("range_jump.")
+                              ? settings.prefilter == Prefilter::kRangeJump
+                              : settings.mode == MapperMode::kKalman;
+        if (!used) {
+            throw MakeInputError("", field, a,
+                                 name.starts_with("kalman.")
+                                     ? "the Kalman mapper's parameter, but the mapper mode is " +
+                                           std::string(ToString(settings.mode))
+                                     : "a pre-filter's parameter, but the pre-filter is " +
+                                           std::string(ToString(settings.prefilter)));
+        }
+        params.Set(name, a.substr(eq + 1));
+    }
+    SetStageParams(settings, params);
+    settings.Validate();
 }
 
 std::vector<std::uint8_t> PrefilterLabels(const core::Scan& scan, const MapSettings& settings) {
@@ -130,6 +179,7 @@ MappedRun MapScans(const std::vector<core::Scan>& scans,
     config.unknown = settings.unknown;
     if (settings.mode == MapperMode::kKalman) {
         mapper::KalmanMapperConfig kalman;
+        static_cast<mapper::KalmanNoiseConfig&>(kalman) = settings.kalman;
         kalman.grid = grid;
         kalman.a = settings.a;
         kalman.scan_period_s = config.scan_period_s;
@@ -256,6 +306,34 @@ std::string MapConfigYaml(const std::string& run_path,
     out << YAML::Key << "a" << YAML::Value << mapped.config.a;
     io::EmitNumber(out, "delta_l_m", mapped.config.delta_l_m);
     io::EmitNumber(out, "scan_period_s", mapped.config.scan_period_s);
+    const MapSettings& st = mapped.settings;
+    if (st.prefilter == Prefilter::kShadow) {
+        out << YAML::Key << "shadow" << YAML::Value << YAML::BeginMap;
+        io::EmitNumber(out, "min_angle_deg", st.shadow.min_angle_deg);
+        io::EmitNumber(out, "max_angle_deg", st.shadow.max_angle_deg);
+        out << YAML::Key << "window" << YAML::Value << st.shadow.window;
+        out << YAML::Key << "neighbors" << YAML::Value << st.shadow.neighbors;
+        out << YAML::Key << "remove_start_point" << YAML::Value
+            << (st.shadow.remove_start_point ? "on" : "off");
+        out << YAML::EndMap;
+    }
+    if (st.prefilter == Prefilter::kRangeJump) {
+        out << YAML::Key << "range_jump" << YAML::Value << YAML::BeginMap;
+        io::EmitNumber(out, "jump_min_m", st.range_jump.jump_min_m);
+        io::EmitNumber(out, "margin_m", st.range_jump.margin_m);
+        io::EmitNumber(out, "chord_tol_m", st.range_jump.chord_tol_m);
+        out << YAML::EndMap;
+    }
+    if (st.mode == MapperMode::kKalman) {
+        out << YAML::Key << "kalman" << YAML::Value << YAML::BeginMap;
+        io::EmitNumber(out, "range_sigma_m", st.kalman.range_sigma_m);
+        io::EmitNumber(out, "beam_constant_m", st.kalman.beam_constant_m);
+        io::EmitNumber(out, "beam_angle_rad", st.kalman.beam_angle_rad);
+        io::EmitNumber(out, "min_variance_m2", st.kalman.min_variance_m2);
+        io::EmitNumber(out, "mahalanobis_gate", st.kalman.mahalanobis_gate);
+        io::EmitNumber(out, "multi_height_noise_m2", st.kalman.multi_height_noise_m2);
+        out << YAML::EndMap;
+    }
     out << YAML::EndMap;
     out << YAML::Key << "stats" << YAML::Value << YAML::Flow << YAML::BeginMap;
     out << YAML::Key << "beams_seen" << YAML::Value << s.beams_seen;

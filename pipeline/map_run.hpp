@@ -15,6 +15,8 @@
 #include "casmap/core/scan.hpp"
 #include "casmap/core/text.hpp"
 #include "casmap/core/trajectory.hpp"
+#include "casmap/mapper/filter_params.hpp"
+#include "casmap/mapper/kalman_noise.hpp"
 #include "casmap/mapper/scan_filters.hpp"
 #include "casmap/mapper/terrain_mapper.hpp"
 #include "casmap/mapper/unknown.hpp"
@@ -45,9 +47,27 @@ struct MapSettings {
     Prefilter prefilter = Prefilter::kNone;
     mapper::ShadowFilterConfig shadow;   // used when prefilter == kShadow
     mapper::RangeJumpConfig range_jump;  // used when prefilter == kRangeJump
-    /// Throws InputError naming the field (a, delta_l_m, shadow_filter.<f>, range_jump.<f>).
+    mapper::KalmanNoiseConfig kalman;    // used when mode == kKalman
+    /// Throws InputError naming the field (a, delta_l_m, shadow.<f>, range_jump.<f>,
+    /// kalman.<f>).
     void Validate() const;
 };
+
+/// The mapping-stage parameters of `params` (shadow.*, range_jump.*, kalman.*) into `settings`.
+void SetStageParams(MapSettings& settings, const mapper::FilterParams& params);
+
+/// True for a parameter of a mapping stage (a name starting shadow., range_jump. or kalman.).
+[[nodiscard]] bool IsStageParameter(std::string_view name);
+
+/// Applies NAME=VALUE assignments (FilterParams::Set's names and ranges) of mapping-stage
+/// parameters to `settings`, then validates. Throws InputError naming `field` for an
+/// assignment that is not NAME=VALUE, a parameter that is not a stage's (a map filter's
+/// parameter) or a stage `settings` does not run (shadow.* without the shadow pre-filter,
+/// range_jump.* without range_jump, kalman.* without the Kalman mapper), and the parameter
+/// itself for a bad value.
+void ApplyStageSettings(MapSettings& settings,
+                        const std::vector<std::string>& assignments,
+                        const std::string& field);
 
 /// Elevation H (m) and certainty C (counts) of one run.
 struct MappedRun {
@@ -102,7 +122,7 @@ using core::FormatNumber;
 
 /// The settings that produced the maps of `run_path` (the file as given; `seed` null when the run
 /// has none) as YAML: run, seed, grid, mapper {mode, unknown, prefilter, a, delta_l_m,
-/// scan_period_s}, stats.
+/// scan_period_s, and the parameters of the stages run: shadow, range_jump, kalman}, stats.
 [[nodiscard]] std::string MapConfigYaml(const std::string& run_path,
                                         std::optional<std::uint64_t> seed,
                                         const MappedRun& mapped);

@@ -19,9 +19,39 @@ namespace {
 constexpr std::size_t kMaxPoints = 10000;
 constexpr int kMaxGrowRounds = 20;
 
-const char* const kAllowed =
-    "unknown parameter; allowed: A, G, B, h_sum_min, a, E, k, speed, support_tol_m, "
-    "support_min, ground_k, ground_quantile";
+std::string Allowed() {
+    std::string list;
+    for (const std::string& n : SweepableParameters()) {
+        list += (list.empty() ? "" : ", ") + n;
+    }
+    return "unknown parameter; allowed: " + list;
+}
+
+/// Throws InputError naming "axes" when `name` is a mapping stage's parameter (pre-filter,
+/// Kalman mapper) that the swept pipeline does not run: the axis would change nothing.
+void CheckStageAxis(const SweepOptions& opt, const std::string& name) {
+    if (!IsStageParameter(name)) {
+        return;
+    }
+    const PipelineSpec& spec = FindPipeline(opt.filter, "filter");
+    const bool shadow = name.starts_with("shadow.");
+    const bool jump = name.starts_with("range_jump.");
+    const bool used = shadow ? spec.prefilter == Prefilter::kShadow
+                      : jump ? spec.prefilter == Prefilter::kRangeJump
+                             : spec.mode == MapperMode::kKalman;
+    if (!used) {
+        throw MakeInputError("", "axes", name,
+                             "the filter " + opt.filter + " does not run the " +
+                                 (shadow ? "shadow pre-filter"
+                                  : jump ? "range_jump pre-filter"
+                                         : "Kalman mapper") +
+                                 " (sweep a pipeline that does, e.g. " +
+                                 (shadow ? "shadow_cas"
+                                  : jump ? "range_jump_cas"
+                                         : "kalman_median") +
+                                 ")");
+    }
+}
 
 double ParseNumber(const std::string& text,
                    const std::string& assignment,
@@ -170,10 +200,14 @@ std::optional<mapper::FilterMethod> SweepFilter(const SweepOptions& opt) {
 }  // namespace detail
 
 const std::vector<std::string>& SweepableParameters() {
-    static const std::vector<std::string> names = {"A",           "G",        "B",
-                                                   "h_sum_min",   "a",        "E",
-                                                   "k",           "speed",    "support_tol_m",
-                                                   "support_min", "ground_k", "ground_quantile"};
+    static const std::vector<std::string> names = {
+        "A", "G", "B", "h_sum_min", "a", "E", "k", "speed", "support_tol_m", "support_min",
+        "ground_k", "ground_quantile",
+        // mapping stages: only with a pipeline that runs them (--filter shadow_cas, ...)
+        "shadow.min_angle_deg", "shadow.max_angle_deg", "shadow.window", "shadow.neighbors",
+        "range_jump.jump_min_m", "range_jump.margin_m", "range_jump.chord_tol_m",
+        "kalman.range_sigma_m", "kalman.beam_constant_m", "kalman.beam_angle_rad",
+        "kalman.min_variance_m2", "kalman.mahalanobis_gate", "kalman.multi_height_noise_m2"};
     return names;
 }
 
@@ -191,7 +225,7 @@ SweepAxis ParseSweepAxis(const std::string& assignment, const std::string& field
     SweepAxis axis;
     axis.name = assignment.substr(0, eq);
     if (!IsSweepable(axis.name)) {
-        throw MakeInputError("", field, axis.name, kAllowed);
+        throw MakeInputError("", field, axis.name, Allowed());
     }
     const std::string range = assignment.substr(eq + 1);
     const std::size_t c1 = range.find(':');
@@ -258,11 +292,12 @@ void SweepOptions::Validate() const {
     for (std::size_t i = 0; i < axes.size(); ++i) {
         const SweepAxis& axis = axes[i];
         if (!IsSweepable(axis.name)) {
-            throw MakeInputError("", "axes", axis.name, kAllowed);
+            throw MakeInputError("", "axes", axis.name, Allowed());
         }
         if (axis.values.empty()) {
             throw MakeInputError("", "axes", axis.name, "at least one value");
         }
+        CheckStageAxis(*this, axis.name);
         for (std::size_t j = 0; j < i; ++j) {
             if (axes[j].name == axis.name) {
                 throw MakeInputError("", "axes", axis.name, "parameter given twice");

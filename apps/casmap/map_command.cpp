@@ -1,5 +1,6 @@
 // casmap map RUN.h5 [--out DIR] [--grid X0,Y0,CELL_M,ROWS,COLS] [--mapper paper|kalman]
 //                  [--unknown zero|nan] [--prefilter none|shadow|range_jump]
+//                  [--set shadow.<f>=V | range_jump.<f>=V | kalman.<f>=V ...]
 // Builds the elevation and certainty maps (Eq. 1-6, or the Kalman mapper) of a run file,
 // simulated or recorded (the truth labels are never read), and writes them as float TIFF +
 // colour PNG into DIR and as /maps/elevation_m and /maps/certainty into the run file.
@@ -7,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "apps/casmap/commands.hpp"
 #include "casmap/core/input_error.hpp"
@@ -28,6 +30,7 @@ struct MapOptions {
     std::string mapper = "paper";
     std::string unknown = "zero";
     std::string prefilter = "none";
+    std::vector<std::string> set;  // mapping-stage parameters (pre-filter, Kalman mapper)
 };
 
 pipeline::MapSettings ParseMapSettings(const MapOptions& opt) {
@@ -35,7 +38,7 @@ pipeline::MapSettings ParseMapSettings(const MapOptions& opt) {
     settings.mode = pipeline::ParseMapperMode(opt.mapper, "--mapper");
     settings.unknown = mapper::ParseUnknown(opt.unknown, "command line", "--unknown");
     settings.prefilter = pipeline::ParsePrefilter(opt.prefilter, "--prefilter");
-    settings.Validate();
+    pipeline::ApplyStageSettings(settings, opt.set, "--set");  // validates
     return settings;
 }
 
@@ -155,6 +158,9 @@ void AddMapCommand(CLI::App& app, CommonOptions& common) {
     sub->add_option("--prefilter", opt->prefilter,
                     "scan pre-filter before mapping: none | shadow | range_jump")
         ->capture_default_str();
+    sub->add_option("--set", opt->set,
+                    "NAME=VALUE of the pre-filter run (shadow.<field>, range_jump.<field>) or of "
+                    "the Kalman mapper (kalman.<field>); repeatable (docs/commands/map.md)");
     AddThreadsOption(sub, common);
     sub->callback([opt] { RunMap(*opt); });
 }

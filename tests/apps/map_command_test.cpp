@@ -2,11 +2,13 @@
 // moving along x over a floor at z = 0 with a raised block), then checks the maps it wrote.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <yaml-cpp/yaml.h>
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "casmap/core/pose.hpp"
 #include "casmap/io/image.hpp"
@@ -238,6 +240,48 @@ TEST(MapCommand, BadModeFlagsExitTwoNamingTheFlag) {
         EXPECT_NE(r.output.find("bogus"), std::string::npos) << r.output;
     }
     EXPECT_FALSE(fs::exists(dir / "run_maps"));
+    // --set takes the parameters of the stages run, by the names bench and presets use.
+    struct Case {
+        std::string args;
+        std::string needle;
+    };
+    for (const Case& c : std::vector<Case>{
+             {"--set A=30", "not a mapping-stage parameter"},
+             {"--set shadow.min_angle_deg=5", "the pre-filter is none"},
+             {"--prefilter shadow --set range_jump.jump_min_m=0.2", "the pre-filter is shadow"},
+             {"--set kalman.mahalanobis_gate=2", "the mapper mode is paper"},
+             {"--prefilter shadow --set shadow.min_angle_deg=95", "shadow.min_angle_deg = 95"},
+             {"--prefilter range_jump --set range_jump.jump_min_m=0.04", "range_jump.margin_m"},
+             {"--mapper kalman --set kalman.min_variance_m2=0", "kalman.min_variance_m2"},
+             {"--prefilter shadow --set shadow.window", "NAME=VALUE"}}) {
+        const Result r = Casmap("map " + run + " " + c.args);
+        EXPECT_EQ(r.code, 2) << c.args << ": " << r.output;
+        EXPECT_NE(r.output.find(c.needle), std::string::npos) << c.args << ": " << r.output;
+    }
+    EXPECT_FALSE(fs::exists(dir / "run_maps"));
+}
+
+// The stage parameters reach the mapper and map.yaml records them.
+TEST(MapCommand, SetsThePreFilterAndKalmanParameters) {
+    const fs::path dir = FreshDir("stageset");
+    io::RunData with_grid = FlatFloorRun(false);
+    with_grid.maps.grid = core::GridGeometry{0.0, -1.0, 0.025, 60, 80};
+    io::WriteRunFile(dir / "run.h5", with_grid);
+    const std::string run = (dir / "run.h5").string();
+    Result r = Casmap("map " + run +
+                      " --prefilter shadow --set shadow.min_angle_deg=30 --set "
+                      "shadow.neighbors=2 --out " +
+                      (dir / "shadow").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const YAML::Node yaml = YAML::LoadFile((dir / "shadow" / "map.yaml").string());
+    EXPECT_EQ(yaml["mapper"]["shadow"]["min_angle_deg"].as<double>(), 30.0);
+    EXPECT_EQ(yaml["mapper"]["shadow"]["neighbors"].as<int>(), 2);
+    r = Casmap("map " + run + " --mapper kalman --set kalman.range_sigma_m=0.02 --out " +
+               (dir / "kalman").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const YAML::Node k = YAML::LoadFile((dir / "kalman" / "map.yaml").string());
+    EXPECT_EQ(k["mapper"]["kalman"]["range_sigma_m"].as<double>(), 0.02);
+    EXPECT_FALSE(k["mapper"]["shadow"]);
 }
 
 }  // namespace

@@ -57,7 +57,7 @@ TEST(FilterParams, SetsEveryNamedParameter) {
     EXPECT_EQ(p.baseline.window, 7);
     EXPECT_EQ(p.cas.speed_m_s, 0.5);
     EXPECT_NO_THROW(p.Validate());
-    EXPECT_EQ(FilterParams::Names().size(), 24U);
+    EXPECT_EQ(FilterParams::Names().size(), 38U);  // 24 filter + 14 mapping-stage names
 }
 
 TEST(FilterParams, SetsTheWaveTwoOptions) {
@@ -109,6 +109,78 @@ TEST(FilterParams, RejectsOutOfRangeValues) {
             << bad << ": " << e;
     }
     EXPECT_NE(SetError("k").find("NAME=VALUE"), std::string::npos);
+}
+
+// The mapping stages' parameters (scan pre-filters, Kalman mapper) are set by the same names
+// everywhere (--set, presets, sweep axes); a bad value names the parameter and the rule.
+TEST(FilterParams, SetsThePreFilterAndKalmanParameters) {
+    FilterParams p;
+    p.Set("shadow.min_angle_deg", "6");
+    p.Set("shadow.max_angle_deg", "174");
+    p.Set("shadow.window", "2");
+    p.Set("shadow.neighbors", "0");
+    p.Set("shadow.remove_start_point", "on");
+    p.Set("range_jump.jump_min_m", "0.2");
+    p.Set("range_jump.margin_m", "0.05");
+    p.Set("range_jump.chord_tol_m", "0");
+    p.Set("kalman.range_sigma_m", "0.01");
+    p.Set("kalman.beam_constant_m", "0.001");
+    p.Set("kalman.beam_angle_rad", "0.003");
+    p.Set("kalman.min_variance_m2", "4e-6");
+    p.Set("kalman.mahalanobis_gate", "3");
+    p.Set("kalman.multi_height_noise_m2", "0");
+    EXPECT_EQ(p.shadow.min_angle_deg, 6.0);
+    EXPECT_EQ(p.shadow.max_angle_deg, 174.0);
+    EXPECT_EQ(p.shadow.window, 2);
+    EXPECT_EQ(p.shadow.neighbors, 0);
+    EXPECT_TRUE(p.shadow.remove_start_point);
+    EXPECT_EQ(p.range_jump.jump_min_m, 0.2);
+    EXPECT_EQ(p.range_jump.margin_m, 0.05);
+    EXPECT_EQ(p.range_jump.chord_tol_m, 0.0);
+    EXPECT_EQ(p.kalman.range_sigma_m, 0.01);
+    EXPECT_EQ(p.kalman.beam_constant_m, 0.001);
+    EXPECT_EQ(p.kalman.beam_angle_rad, 0.003);
+    EXPECT_EQ(p.kalman.min_variance_m2, 4e-6);
+    EXPECT_EQ(p.kalman.mahalanobis_gate, 3.0);
+    EXPECT_EQ(p.kalman.multi_height_noise_m2, 0.0);
+    EXPECT_NO_THROW(p.Validate());
+    // Defaults are the configs' own (laser_filters' example, the LMS 200 noise model).
+    const FilterParams d;
+    EXPECT_EQ(d.shadow.min_angle_deg, ShadowFilterConfig{}.min_angle_deg);
+    EXPECT_EQ(d.range_jump.jump_min_m, RangeJumpConfig{}.jump_min_m);
+    EXPECT_EQ(d.kalman.mahalanobis_gate, KalmanNoiseConfig{}.mahalanobis_gate);
+    for (const char* bad :
+         {"shadow.min_angle_deg=0", "shadow.min_angle_deg=90", "shadow.max_angle_deg=90",
+          "shadow.max_angle_deg=180", "shadow.window=0", "shadow.window=11", "shadow.neighbors=-1",
+          "shadow.window=1.5", "shadow.remove_start_point=yes", "range_jump.jump_min_m=0",
+          "range_jump.margin_m=-0.01", "range_jump.chord_tol_m=x", "kalman.range_sigma_m=-1",
+          "kalman.min_variance_m2=0", "kalman.mahalanobis_gate=0", "kalman.beam_angle_rad=inf"}) {
+        const std::string name = std::string(bad).substr(0, std::string(bad).find('='));
+        FilterParams q;
+        try {
+            q.SetAssignment(bad);
+            ADD_FAILURE() << "accepted " << bad;
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.field(), name) << bad << ": " << e.what();
+            EXPECT_TRUE(e.rule().find("allowed: ") == 0 || e.rule() == "must be a finite number")
+                << bad << ": " << e.rule();
+        }
+    }
+}
+
+// Cross-field rules are Validate's, so the order of the assignments does not matter.
+TEST(FilterParams, CrossFieldRulesAreCheckedAfterEverySet) {
+    FilterParams p;
+    p.Set("range_jump.jump_min_m", "0.05");  // default margin 0.03 >= 0.05 / 2: not yet valid
+    try {
+        p.Validate();
+        ADD_FAILURE() << "accepted margin 0.03 with jump_min_m 0.05";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.field(), "range_jump.margin_m") << e.what();
+        EXPECT_NE(e.rule().find("jump_min_m / 2"), std::string::npos) << e.what();
+    }
+    p.Set("range_jump.margin_m", "0.02");
+    EXPECT_NO_THROW(p.Validate());
 }
 
 TEST(FilterMethod, ParsesTheFiveNames) {

@@ -74,7 +74,7 @@ TEST(ScanFilters, InvalidSettingsNameTheField) {
         (void)ShadowFilterLabels(PoleScan(), s);
         FAIL() << "accepted min_angle_deg = 95";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("shadow_filter.min_angle_deg"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("shadow.min_angle_deg"), std::string::npos);
     }
     RangeJumpConfig r;
     r.margin_m = 0.1;  // >= jump_min_m / 2

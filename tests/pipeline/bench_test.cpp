@@ -1,16 +1,19 @@
 #include "casmap/pipeline/bench.hpp"
 
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
+#include "casmap/pipeline/preset.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -303,6 +306,75 @@ TEST(RunBench, PresetPipelineSectionsApplyToTheirPipelineOnly) {
     const BenchResult both = RunBench(options);
     EXPECT_EQ(pi(both, "cas"), pi(global, "cas"));
     EXPECT_EQ(pi(both, "cas_trail"), pi(global, "cas_trail"));
+}
+
+// A preset section sets a pre-filter / Kalman parameter for one pipeline: that pipeline's map is
+// made with it (its figures equal a bench with the value for every pipeline), the pipelines
+// sharing the stage without a section keep the defaults, and the run's configuration shows it.
+TEST(RunBench, PresetSectionsSetPreFilterAndKalmanParameters) {
+    const std::filesystem::path file =
+        std::filesystem::path(testing::TempDir()) / "casmap_bench_stage_preset.yaml";
+    std::ofstream(file) << "set: {}\npipelines:\n  shadow_cas: {shadow.min_angle_deg: 25}\n"
+                           "  kalman_median: {kalman.mahalanobis_gate: 1.0}\n";
+    BenchOptions options;
+    options.courses = {4};
+    options.tests = {"T"};
+    options.sheets = false;
+    options.threads = 2;
+    options.pipelines = {"cas", "kalman", "kalman_median", "shadow", "shadow_cas"};
+    const BenchResult plain = RunBench(options);
+    options.preset = file.string();
+    const BenchResult own = RunBench(options);
+    BenchOptions all = options;
+    all.preset.clear();
+    all.filter_settings = {"shadow.min_angle_deg=25", "kalman.mahalanobis_gate=1.0"};
+    const BenchResult global = RunBench(all);
+    const auto score = [](const BenchResult& r, const std::string& name) {
+        const FilterScore& f = r.runs[0].filters.at(name);
+        return std::make_tuple(f.pi, f.rmse_m, f.spikes, f.coverage);
+    };
+    EXPECT_EQ(score(own, "shadow_cas"), score(global, "shadow_cas"));
+    EXPECT_NE(std::get<0>(score(own, "shadow_cas")), std::get<0>(score(plain, "shadow_cas")));
+    EXPECT_EQ(score(own, "shadow"), score(plain, "shadow"));  // no section: default angle
+    EXPECT_NE(score(global, "shadow"), score(plain, "shadow"));
+    EXPECT_EQ(score(own, "kalman_median"), score(global, "kalman_median"));
+    EXPECT_NE(std::get<0>(score(own, "kalman_median")), std::get<0>(score(plain, "kalman_median")));
+    EXPECT_EQ(score(own, "kalman"), score(plain, "kalman"));
+    EXPECT_EQ(score(own, "cas"), score(plain, "cas"));
+    EXPECT_NE(own.run_configs[0].find("pipeline_filter_settings:\n  kalman_median: "
+                                      "[kalman.mahalanobis_gate=1.0]\n  shadow_cas: "
+                                      "[shadow.min_angle_deg=25]"),
+              std::string::npos)
+        << own.run_configs[0];
+    // --set for every pipeline: the run's effective filters section holds the values.
+    const YAML::Node config = YAML::Load(global.run_configs[0]);
+    EXPECT_EQ(config["filters"]["shadow"]["min_angle_deg"].as<double>(), 25.0);
+    EXPECT_EQ(config["filters"]["kalman"]["mahalanobis_gate"].as<double>(), 1.0);
+    EXPECT_EQ(config["filters"]["range_jump"]["jump_min_m"].as<double>(),
+              mapper::RangeJumpConfig{}.jump_min_m);
+}
+
+// A bad stage value in a preset section names the file, the section and the parameter.
+TEST(LoadPreset, BadStageValueNamesTheSectionAndParameter) {
+    const std::filesystem::path file =
+        std::filesystem::path(testing::TempDir()) / "casmap_bad_stage_preset.yaml";
+    std::ofstream(file) << "set: {}\npipelines:\n  range_jump_cas: {range_jump.jump_min_m: -1}\n";
+    try {
+        (void)LoadPreset(file.string());
+        ADD_FAILURE() << "accepted range_jump.jump_min_m = -1";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.field(), "pipelines.range_jump_cas.range_jump.jump_min_m") << e.what();
+        EXPECT_NE(std::string(e.what()).find(file.string() + ":3:"), std::string::npos) << e.what();
+        EXPECT_NE(e.rule().find("allowed: > 0"), std::string::npos) << e.what();
+    }
+    BenchOptions o;
+    o.filter_settings = {"range_jump.jump_min_m=0.04"};  // default margin 0.03 >= 0.04 / 2
+    try {
+        o.Validate();
+        ADD_FAILURE() << "accepted range_jump margin 0.03 with jump_min_m 0.04";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.field(), "range_jump.margin_m") << e.what();
+    }
 }
 
 // The paper preset gives the defaults' effective parameters, byte for byte.

@@ -65,6 +65,37 @@ TEST(SweepOptions, RejectsBadAxesNamingTheField) {
     EXPECT_NE(ErrorOf([&] { fixed.Validate(); }).find("bogus"), std::string::npos);
 }
 
+// A mapping stage's parameter is an axis only for a pipeline that runs the stage.
+TEST(SweepOptions, StageAxesNeedAPipelineRunningTheStage) {
+    for (const auto& [filter, axis] : std::vector<std::pair<std::string, std::string>>{
+             {"cas", "shadow.min_angle_deg"},
+             {"range_jump_cas", "shadow.min_angle_deg"},
+             {"shadow_cas", "range_jump.jump_min_m"},
+             {"cas_trail", "kalman.mahalanobis_gate"}}) {
+        SweepOptions o;
+        o.filter = filter;
+        o.courses = {4};
+        o.axes = {{axis, {20.0}}};
+        try {
+            o.Validate();
+            ADD_FAILURE() << filter << " accepted the axis " << axis;
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.field(), "axes") << e.what();
+            EXPECT_EQ(e.value(), axis) << e.what();
+            EXPECT_NE(e.rule().find("does not run"), std::string::npos) << e.what();
+        }
+    }
+    SweepOptions ok;
+    ok.filter = "kalman_median";
+    ok.courses = {4};
+    ok.axes = {{"kalman.mahalanobis_gate", {1.0, 2.5}}};
+    EXPECT_NO_THROW(ok.Validate());
+    ok.axes = {{"kalman.mahalanobis_gate", {0.0}}};  // out of range: the parameter is named
+    EXPECT_NE(ErrorOf([&] { ok.Validate(); }).find("kalman.mahalanobis_gate"), std::string::npos);
+    EXPECT_EQ(ParseSweepAxis("shadow.window=1:3:1", "f").values,
+              (std::vector<double>{1.0, 2.0, 3.0}));
+}
+
 TEST(Summarise, IgnoresNonFiniteValues) {
     const SweepStats s = Summarise({1.0, 3.0, std::nan("")});
     EXPECT_EQ(s.runs, 2U);
@@ -281,6 +312,31 @@ TEST(RunSweep, SweepsANamedPipelineLikeTheBenchScoresIt) {
     EXPECT_EQ(r.points[1].spikes_total, run.filters.at("range_jump_cas").spikes);
     EXPECT_EQ(r.points[1].poles_kept, run.poles_kept.at("range_jump_cas").size());
     EXPECT_TRUE(std::isnan(r.points[1].mixed_pct));  // no Table II shares for pipelines
+}
+
+// A pre-filter's parameter swept over a named pipeline: each point's figures equal casmap
+// bench's for that pipeline with the value set (the stage's map is made with it).
+TEST(RunSweep, SweepsAPreFilterParameterLikeTheBenchScoresIt) {
+    SweepOptions options;
+    options.filter = "shadow_cas";
+    options.axes = {{"shadow.min_angle_deg", {5.0, 25.0}}};
+    options.courses = {4};
+    options.threads = 2;
+    const SweepResult r = RunSweep(options);
+    ASSERT_EQ(r.points.size(), 2U);
+    EXPECT_NE(r.points[0].pi.mean, r.points[1].pi.mean);
+    for (std::size_t i = 0; i < 2; ++i) {
+        BenchOptions bench;
+        bench.courses = {4};
+        bench.tests = {"T"};
+        bench.sheets = false;
+        bench.pipelines = {"shadow_cas"};
+        bench.filter_settings = {"shadow.min_angle_deg=" + FormatNumber(r.points[i].values[0])};
+        const BenchRun run = RunBench(bench).runs.at(0);
+        EXPECT_EQ(r.points[i].pi.mean, run.filters.at("shadow_cas").pi) << i;
+        EXPECT_EQ(r.points[i].spikes_total, run.filters.at("shadow_cas").spikes) << i;
+        EXPECT_EQ(r.points[i].poles_kept, run.poles_kept.at("shadow_cas").size()) << i;
+    }
 }
 
 }  // namespace
