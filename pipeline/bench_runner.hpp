@@ -119,6 +119,27 @@ struct MappedBenchRun {
 /// datum clamp of sim::GroundTruthElevation's default: terrain scenes keep negative heights).
 [[nodiscard]] Course LoadSceneCourse(const std::string& path, const core::GridGeometry& grid);
 
+/// Maps of one run's scans under other mapper modes / scan pre-filters (ScorePipelines makes
+/// them), keyed by everything such a map depends on besides the scans and grid: mapper mode,
+/// pre-filter, a, delta-l, unknown convention and the stage's parameters (shadow.*,
+/// range_jump.*, kalman.*). A caller scoring one run many times (a sweep over filter
+/// parameters) keeps one per run so each stage setting is mapped once. Holds at most
+/// `capacity` maps, the oldest made leaving first; one map is about 8 bytes per grid cell
+/// (200 x 80 cells: 128 KB). Not thread-safe: one run, one user at a time.
+class StageMaps {
+public:
+    explicit StageMaps(std::size_t capacity = 4) : capacity_(capacity < 1 ? 1 : capacity) {}
+    [[nodiscard]] std::shared_ptr<const MappedRun> Find(const std::string& key) const;
+    void Add(const std::string& key, std::shared_ptr<const MappedRun> map);
+    [[nodiscard]] std::size_t size() const { return maps_.size(); }
+    [[nodiscard]] std::size_t made() const { return made_; }  // maps added in all
+
+private:
+    std::size_t capacity_;
+    std::size_t made_ = 0;
+    std::vector<std::pair<std::string, std::shared_ptr<const MappedRun>>> maps_;  // oldest first
+};
+
 /// Runs the named pipelines (bench_pipelines.hpp) on one run and scores each against the
 /// course's truth over the paper's region, Eq. 11's denominator being `run`'s map (the plain
 /// raw map). Pipelines with another mapper mode or a scan pre-filter map `sim`'s scans again
@@ -126,14 +147,17 @@ struct MappedBenchRun {
 /// The map filters use `params` (unknown convention included), or `own.at(name)` for a
 /// pipeline listed there (a preset's `pipelines:` section); Table II classes and the
 /// fill-error cells always come from the paper CAS with `params`. Fills `sheet` (raw, truth,
-/// every pipeline's map, CAS classes) when non-null.
+/// every pipeline's map, CAS classes) when non-null. `stage_maps` (may be null: maps made for
+/// this call only) supplies and keeps the re-made maps across calls on the same `sim`; the
+/// figures never depend on it.
 [[nodiscard]] BenchRun ScorePipelines(const MappedBenchRun& run,
                                       const SimulatedRun* sim,
                                       const Course& course,
                                       const mapper::FilterParams& params,
                                       const std::vector<std::string>& pipelines,
                                       SheetMaps* sheet,
-                                      const std::map<std::string, mapper::FilterParams>& own = {});
+                                      const std::map<std::string, mapper::FilterParams>& own = {},
+                                      StageMaps* stage_maps = nullptr);
 
 /// ScorePipelines with the paper's five filters (no re-mapping).
 [[nodiscard]] BenchRun ScoreRun(const MappedBenchRun& run,

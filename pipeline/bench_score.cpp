@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <stdexcept>
-#include <tuple>
 #include <utility>
 #include <variant>
 
@@ -115,13 +115,31 @@ std::string StageKey(const PipelineSpec& spec, const mapper::FilterParams& p) {
 
 }  // namespace
 
+std::shared_ptr<const MappedRun> StageMaps::Find(const std::string& key) const {
+    for (const auto& [k, map] : maps_) {
+        if (k == key) {
+            return map;
+        }
+    }
+    return nullptr;
+}
+
+void StageMaps::Add(const std::string& key, std::shared_ptr<const MappedRun> map) {
+    if (maps_.size() >= capacity_) {
+        maps_.erase(maps_.begin());
+    }
+    maps_.emplace_back(key, std::move(map));
+    ++made_;
+}
+
 BenchRun ScorePipelines(const MappedBenchRun& run,
                         const SimulatedRun* sim,
                         const Course& course,
                         const mapper::FilterParams& params,
                         const std::vector<std::string>& pipelines,
                         SheetMaps* sheet,
-                        const std::map<std::string, mapper::FilterParams>& own) {
+                        const std::map<std::string, mapper::FilterParams>& own,
+                        StageMaps* stage_maps) {
     CheckPipelines(pipelines);
     const core::MapF& raw = run.mapped.elevation;
     const core::MapF& c = run.mapped.certainty;
@@ -147,14 +165,19 @@ BenchRun ScorePipelines(const MappedBenchRun& run,
     out.raw_spikes = raw_metrics.raw_spikes;
     // Maps of the other mapper modes / pre-filters, each made once per stage parameters from
     // the same scans (a preset section may give one pipeline its own pre-filter settings).
-    using MapKey = std::tuple<MapperMode, Prefilter, std::string>;
-    std::map<MapKey, MappedRun> maps;
+    std::map<std::string, std::shared_ptr<const MappedRun>> maps;  // this call's, by key
     const auto params_of = [&](const std::string& name) -> const mapper::FilterParams& {
         const auto it = own.find(name);
         return it == own.end() ? params : it->second;
     };
     const auto key_of = [&](const PipelineSpec& spec) {
-        return MapKey{spec.mode, spec.prefilter, StageKey(spec, params_of(spec.name))};
+        std::string key = std::string(ToString(spec.mode)) + "/" +
+                          std::string(ToString(spec.prefilter)) + "/" +
+                          std::string(mapper::ToString(run.mapped.settings.unknown)) + "/";
+        const double base[] = {static_cast<double>(run.mapped.config.a),
+                               run.mapped.config.delta_l_m};
+        key.append(reinterpret_cast<const char*>(base), sizeof base);
+        return key + StageKey(spec, params_of(spec.name));
     };
     const auto is_plain = [&](const PipelineSpec& spec) {
         return spec.mode == run.mapped.settings.mode &&
@@ -163,8 +186,15 @@ BenchRun ScorePipelines(const MappedBenchRun& run,
     };
     for (const std::string& name : pipelines) {
         const PipelineSpec& spec = FindPipeline(name, "pipelines");
-        if (is_plain(spec) || maps.count(key_of(spec)) != 0) {
+        const std::string key = key_of(spec);
+        if (is_plain(spec) || maps.count(key) != 0) {
             continue;
+        }
+        if (stage_maps != nullptr) {
+            if (std::shared_ptr<const MappedRun> kept = stage_maps->Find(key)) {
+                maps.emplace(key, std::move(kept));
+                continue;
+            }
         }
         if (sim == nullptr) {
             throw MakeInputError("", "pipelines", name,
@@ -177,12 +207,16 @@ BenchRun ScorePipelines(const MappedBenchRun& run,
         settings.mode = spec.mode;
         settings.prefilter = spec.prefilter;
         SetStageParams(settings, params_of(name));
-        maps.emplace(key_of(spec),
-                     MapScans(sim->run.scans, sim->run.poses, run.setup.grid, settings));
+        auto made = std::make_shared<const MappedRun>(
+            MapScans(sim->run.scans, sim->run.poses, run.setup.grid, settings));
+        if (stage_maps != nullptr) {
+            stage_maps->Add(key, made);
+        }
+        maps.emplace(key, std::move(made));
     }
     for (const std::string& name : pipelines) {
         const PipelineSpec& spec = FindPipeline(name, "pipelines");
-        const MappedRun& map = is_plain(spec) ? run.mapped : maps.at(key_of(spec));
+        const MappedRun& map = is_plain(spec) ? run.mapped : *maps.at(key_of(spec));
         const auto own_params = own.find(name);
         const bool shared = own_params == own.end();
         mapper::FilterResult result;

@@ -62,6 +62,12 @@ struct SweepOptions {
     std::string sensor_path;                  // LMS 200 YAML; empty: built-in config
     int threads = 0;                          // 0 = all cores; results never depend on it
     const DistributedSession* session = nullptr;  // null: local threads only
+    /// Keep each process's training runs across grid points and rounds (growth, descent
+    /// lines): the simulated beams and poses (named pipelines that map again only), the paper
+    /// maps per `a`, and up to 4 pre-filter / Kalman maps per run. false: simulate every run
+    /// each round and map every point anew (the reference the cache is tested against).
+    /// Results never depend on it.
+    bool cache_runs = true;
 
     /// The training seeds: `seeds`, or {seed}.
     [[nodiscard]] std::vector<std::uint64_t> TrainSeeds() const;
@@ -153,6 +159,10 @@ struct SweepResult {
     double elapsed_s = 0.0;
     int threads = 1;
     int ranks = 1;
+    /// Work this process did for the training rounds (not in sweep.json: it depends on the
+    /// run cache and the rank count, the figures do not): runs simulated, paper maps made.
+    std::size_t simulated_runs = 0;
+    std::size_t paper_maps = 0;
 };
 
 /// Validates `options`, then simulates every training run (seed x speed x course x test) and

@@ -2,6 +2,7 @@
 // runs, one payload per run carrying every new point's figures), growth of edge axes, the
 // choice of the best point, and the held-out scoring of that point beside the paper's CAS.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -10,6 +11,7 @@
 #include <memory>
 #include <mutex>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 
 #include "casmap/core/parallel.hpp"
@@ -117,9 +119,11 @@ std::vector<std::string> Gather(const DistributedSession& session,
     return out;
 }
 
-/// The paper-mapped training runs of this process, kept across rounds (growth, descent lines)
-/// so a run is simulated once per process and `a`; only for the direct filters (cas, cas_trail,
-/// cas_terrain: a pipeline may map the scans again). Results never depend on it.
+/// The training runs of this process, kept across grid points and rounds (growth, descent
+/// lines) when SweepOptions::cache_runs: the paper maps per run and `a`; for a named pipeline
+/// that maps the scans again (pre-filter, Kalman mapper), the simulated scans and poses (no
+/// truth labels) and that run's StageMaps. A run is worked on by one thread at a time; the
+/// lock guards the containers only. Results never depend on it.
 class RunCache {
 public:
     std::shared_ptr<const MappedBenchRun> Find(const std::string& run, int a) {
@@ -131,10 +135,29 @@ public:
         const std::lock_guard<std::mutex> lock(mutex_);
         maps_[{run, a}] = std::move(map);
     }
+    std::shared_ptr<const SimulatedRun> FindSim(const std::string& run) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        const auto it = sims_.find(run);
+        return it != sims_.end() ? it->second : nullptr;
+    }
+    void StoreSim(const std::string& run, std::shared_ptr<const SimulatedRun> sim) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        sims_[run] = std::move(sim);
+    }
+    StageMaps& Stages(const std::string& run) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        std::unique_ptr<StageMaps>& s = stages_[run];
+        if (!s) {
+            s = std::make_unique<StageMaps>(4);
+        }
+        return *s;
+    }
 
 private:
     std::mutex mutex_;
     std::map<std::pair<std::string, int>, std::shared_ptr<const MappedBenchRun>> maps_;
+    std::map<std::string, std::shared_ptr<const SimulatedRun>> sims_;
+    std::map<std::string, std::unique_ptr<StageMaps>> stages_;
 };
 
 /// Everything every run needs: settings, courses (training and held-out), trajectories.
@@ -149,9 +172,12 @@ struct Context {
     std::vector<int> all_courses;                // sorted union
     std::vector<Course> loaded;                  // per all_courses
     std::optional<mapper::FilterMethod> method;  // nullopt: opt.filter via ScorePipelines
+    bool maps_scans = false;  // opt.filter maps the scans again (a pre-filter, Kalman mapper)
     int threads = 1;
     const DistributedSession* session = nullptr;
     mutable RunCache cache;
+    mutable std::atomic<std::size_t> simulated_runs{0};  // training rounds, this process
+    mutable std::atomic<std::size_t> paper_maps{0};
 
     const Course& CourseOf(int number) const {
         const auto it = std::lower_bound(all_courses.begin(), all_courses.end(), number);
@@ -217,11 +243,13 @@ CasScore ScoreSwept(const Context& cx,
                     const MappedBenchRun& run,
                     const SimulatedRun* sim,
                     const Course& course,
-                    const mapper::FilterParams& params) {
+                    const mapper::FilterParams& params,
+                    StageMaps* stage_maps = nullptr) {
     if (cx.method) {
         return ScoreCas(run, course, params, *cx.method);
     }
-    const BenchRun b = ScorePipelines(run, sim, course, params, {cx.opt.filter}, nullptr);
+    const BenchRun b =
+        ScorePipelines(run, sim, course, params, {cx.opt.filter}, nullptr, {}, stage_maps);
     CasScore s;
     s.pi = b.filters.at(cx.opt.filter).pi;
     s.spikes = b.filters.at(cx.opt.filter).spikes;
@@ -261,44 +289,85 @@ std::map<Point, SweepPoint> TrainRound(const Context& cx,
             items.push_back(r);
         }
     }
+    // Points that share `a` and the mapping stages' values share a map: scoring them one group
+    // after the other maps each stage setting once per run and round.
+    std::vector<int> map_axes;
+    for (std::size_t i = 0; i < opt.axes.size(); ++i) {
+        if (opt.axes[i].name == "a" || IsStageParameter(opt.axes[i].name)) {
+            map_axes.push_back(static_cast<int>(i));
+        }
+    }
+    std::vector<std::size_t> order(points.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+        for (const int i : map_axes) {
+            const auto k = static_cast<std::size_t>(i);
+            if (points[x][k] != points[y][k]) {
+                return points[x][k] < points[y][k];
+            }
+        }
+        return false;
+    });
+    const bool cache = opt.cache_runs;
     const auto work = [&](std::size_t r) -> std::string {
         try {
             const TrainRun& run = runs[r];
             const Course& course = cx.CourseOf(run.course);
             const SimSetup setup = RunSetup(cx, opt, run.seed, run.speed, run.test, course);
-            std::optional<SimulatedRun> sim;  // simulated only when a map is not cached
+            // Simulated only when a map is not cached (or the pipeline maps the scans again).
+            std::shared_ptr<const SimulatedRun> sim =
+                cache && cx.maps_scans ? cx.cache.FindSim(run.name) : nullptr;
+            const auto simulated = [&]() -> const SimulatedRun& {
+                if (!sim) {
+                    auto made = std::make_shared<SimulatedRun>(
+                        SimulateBenchRun(setup, course, RigTrajectory(setup, core::Scene{})));
+                    cx.simulated_runs.fetch_add(1);
+                    if (cache && cx.maps_scans) {
+                        made->run.truth = {};  // labels: never read by the mappers
+                        made->true_poses = {};
+                        cx.cache.StoreSim(run.name, made);
+                    }
+                    sim = std::move(made);
+                }
+                return *sim;
+            };
             std::map<int, std::shared_ptr<const MappedBenchRun>> by_a;
             const auto mapped_for = [&](int a) -> const MappedBenchRun& {
-                if (by_a.count(a) == 0) {
+                if (by_a.count(a) == 0 && cache) {
                     by_a[a] = cx.cache.Find(run.name, a);
                 }
-                if (!by_a[a] || !cx.method) {  // pipelines map `sim` again: need it anyway
-                    if (!sim) {
-                        sim = SimulateBenchRun(setup, course, RigTrajectory(setup, core::Scene{}));
-                    }
-                    if (!by_a[a]) {
-                        by_a[a] = std::make_shared<const MappedBenchRun>(
-                            MapBenchRun(setup, course, *sim, a));
-                        if (cx.method) {
-                            cx.cache.Store(run.name, a, by_a[a]);
-                        }
+                if (!by_a[a]) {
+                    cx.paper_maps.fetch_add(1);
+                    by_a[a] = std::make_shared<const MappedBenchRun>(
+                        MapBenchRun(setup, course, simulated(), a));
+                    if (cache) {
+                        cx.cache.Store(run.name, a, by_a[a]);
                     }
                 }
                 return *by_a[a];
             };
-            std::string out = "R";
+            StageMaps* stages = cache && cx.maps_scans ? &cx.cache.Stages(run.name) : nullptr;
+            std::vector<std::optional<CasScore>> scores(points.size());
             int min_a = std::numeric_limits<int>::max();
-            for (const Point& p : points) {
+            for (const std::size_t k : order) {
+                const Point& p = points[k];
                 if (!Applies(opt, p, run)) {
-                    out += '0';
                     continue;
                 }
                 const int a = PointA(opt, p);
                 min_a = std::min(min_a, a);
                 const MappedBenchRun& mapped = mapped_for(a);
-                out += '1';
-                PutScore(out, ScoreSwept(cx, mapped, sim ? &*sim : nullptr, course,
-                                         RunFilterParams(mapped, detail::PointOverrides(opt, p))));
+                const SimulatedRun* scans = cx.maps_scans ? &simulated() : nullptr;
+                scores[k] =
+                    ScoreSwept(cx, mapped, scans, course,
+                               RunFilterParams(mapped, detail::PointOverrides(opt, p)), stages);
+            }
+            std::string out = "R";
+            for (const std::optional<CasScore>& score : scores) {
+                out += score ? '1' : '0';
+                if (score) {
+                    PutScore(out, *score);
+                }
             }
             PutStr(out, mapped_for(min_a).config_yaml);  // the smallest a of this round's points
             return out;
@@ -571,6 +640,9 @@ SweepResult RunSweep(const SweepOptions& options, const core::ProgressFn& progre
     cx.all_courses.erase(std::unique(cx.all_courses.begin(), cx.all_courses.end()),
                          cx.all_courses.end());
     cx.method = detail::SweepFilter(options);
+    const PipelineSpec& spec = FindPipeline(options.filter, "filter");
+    cx.maps_scans =
+        !cx.method && (spec.mode != MapperMode::kPaper || spec.prefilter != Prefilter::kNone);
     cx.threads = core::ResolveThreads(options.threads);
     const SimSetup probe = BenchSetup(cx.settings, options.courses.front(), cx.tests.front());
     cx.loaded = LoadCourses(cx.settings, cx.all_courses, probe.grid, cx.threads);
@@ -623,6 +695,8 @@ SweepResult RunSweep(const SweepOptions& options, const core::ProgressFn& progre
         result.held_out = HeldOut(cx, opt, result.points[result.best].values, progress);
     }
     result.options = opt;
+    result.simulated_runs = cx.simulated_runs.load();
+    result.paper_maps = cx.paper_maps.load();
     result.threads = cx.threads;
     result.ranks = cx.session->ranks();
     result.elapsed_s =
