@@ -123,6 +123,17 @@ def courses_section(runs):
         best.append(f"{t}: " + ", ".join(n for n in names if wins[t][n] == top)
                     + f" ({top}/{len(by_test[t])})")
     head += ["", "Most lowest-PI wins: " + "; ".join(best) + "."]
+    # Issue 10's goal, course part, per test on this seed: >= 14/16 of the runs won, every pole
+    # kept and edge and overall RMSE below the Kalman map's in every run.
+    goal = []
+    for t, rs in by_test.items():
+        ok = [n for n in names if n != "kalman" and wins[t][n] * 16 >= 14 * len(rs)
+              and all(len(r["poles_kept"].get(n, [])) == len(r["poles"]) for r in rs)
+              and all(below_kalman(r, n) for r in rs)]
+        goal.append(f"{t}: " + (", ".join(ok) if ok else "none"))
+    head += ["", "Goal check on this seed (>= 14 of 16 lowest-PI wins, every pole kept and edge "
+             "and overall RMSE below the Kalman map's in every run of the test): "
+             + "; ".join(goal) + "."]
     return head + body
 
 
@@ -153,6 +164,11 @@ def terrain_section(terrain):
             if raw is not None and finite(f["rmse_m"]) and finite(raw["rmse_m"]):
                 below += f["rmse_m"] < raw["rmse_m"]
         lines.append(f"| {n} | " + " | ".join(cells) + f" | {below}/{len(cols)} |")
+    every = [n for n in names if n != "raw" and all(
+        n in r["filters"] and finite(r["filters"][n]["rmse_m"]) and "raw" in r["filters"]
+        and r["filters"][n]["rmse_m"] < r["filters"]["raw"]["rmse_m"] for _, r in cols)]
+    lines += ["", "Below the raw map's RMSE on every terrain run: "
+              + (", ".join(every) if every else "no pipeline") + "."]
     lines += ["", "Spikes (raw / cas / cas_trail / cas_median / kalman): " + "; ".join(
         f"{label} " + "/".join(str(r["filters"][n]["spikes"]) if n in r["filters"] else "-"
                                for n in ["raw", "cas", "cas_trail", "cas_median", "kalman"])
