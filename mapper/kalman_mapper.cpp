@@ -6,13 +6,14 @@
 #include <string>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/text.hpp"
 
 namespace casmap::mapper {
 namespace {
 
 void Require(bool ok, const std::string& field, double value, const std::string& rule) {
     if (!ok) {
-        throw MakeInputError("kalman mapper", field, std::to_string(value), rule);
+        throw MakeInputError("kalman mapper", field, core::FormatNumber(value), rule);
     }
 }
 

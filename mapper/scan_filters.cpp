@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/text.hpp"
 
 namespace casmap::mapper {
 namespace {
@@ -24,7 +25,7 @@ bool Valid(const core::Scan& scan, std::size_t i) {
 
 void Require(bool ok, const std::string& field, double value, const std::string& rule) {
     if (!ok) {
-        throw MakeInputError("scan filter", field, std::to_string(value), rule);
+        throw MakeInputError("scan filter", field, core::FormatNumber(value), rule);
     }
 }
 
