@@ -11,7 +11,8 @@
 namespace casmap::mapper {
 namespace {
 
-const char* const kWhere = "--set";
+// Set and Validate name the parameter; a CLI shows them as --set, Python as keywords.
+const char* const kWhere = "filter parameters";
 
 [[noreturn]] void Reject(std::string_view name, std::string_view value, const std::string& rule) {
     throw MakeInputError(kWhere, std::string(name), std::string(value), rule);
@@ -32,9 +33,9 @@ double ParseRange(
     if ((lo_open ? !(v > lo) : !(v >= lo)) || v > hi) {
         std::string rule = "allowed: ";
         rule += lo_open ? "> " : ">= ";
-        rule += std::to_string(lo);
+        rule += core::FormatNumber(lo);
         if (std::isfinite(hi)) {
-            rule += " and <= " + std::to_string(hi);
+            rule += " and <= " + core::FormatNumber(hi);
         }
         Reject(name, value, rule);
     }
@@ -303,7 +304,7 @@ void FilterParams::SetAssignment(std::string_view assignment) {
 void FilterParams::Validate() const {
     const auto check = [](bool ok, const std::string& name, double v, const std::string& rule) {
         if (!ok) {
-            throw MakeInputError("filter parameters", name, core::FormatNumber(v), rule);
+            throw MakeInputError(kWhere, name, core::FormatNumber(v), rule);
         }
     };
     check(cas.k >= 1 && cas.k <= 7, "k", cas.k, "allowed: integer 1..7");

@@ -30,7 +30,7 @@ enum class FilterMethod {
 /// "cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median" -> method; throws InputError
 /// naming `field`.
 [[nodiscard]] FilterMethod ParseFilterMethod(std::string_view name,
-                                             const std::string& field = "--method");
+                                             const std::string& field = "method");
 [[nodiscard]] std::string_view ToString(FilterMethod method);
 /// The paper's five (the benchmark's columns); AllFilterMethodsWithVariants() adds the rest.
 [[nodiscard]] const std::vector<FilterMethod>& AllFilterMethods();
@@ -88,10 +88,11 @@ struct BaselineParams {
     Unknown unknown = Unknown::kZero;  // kNaN: statistics over the window's known cells only
 };
 
-/// Every filter parameter, settable by name (`--set NAME=VALUE`): the map filters' (CAS and
-/// its variants, the baselines) and the mapping stages' a named pipeline may use: the scan
-/// pre-filters (shadow.<field>, range_jump.<field>) and the Kalman mapper mode's noise model
-/// (kalman.<field>). A stage's parameters matter only to pipelines that run the stage.
+/// Every filter parameter, settable by name (NAME=VALUE; `casmap filter --set`, Python
+/// keywords): the map filters' (CAS and its variants, the baselines) and the mapping stages' a
+/// named pipeline may use: the scan pre-filters (shadow.<field>, range_jump.<field>) and the
+/// Kalman mapper mode's noise model (kalman.<field>). A stage's parameters matter only to
+/// pipelines that run the stage.
 struct FilterParams {
     CasParams cas;
     BaselineParams baseline;
@@ -102,8 +103,8 @@ struct FilterParams {
                                  // .min_variance_m2, .mahalanobis_gate, .multi_height_noise_m2
 
     /// Sets one parameter by name (`unknown` sets cas.unknown and baseline.unknown); throws
-    /// InputError for an unknown name or a value out of range, naming "--set", the parameter, the
-    /// value and the rule.
+    /// InputError for an unknown name or a value out of range, "filter parameters: <name> =
+    /// <value> (<rule>)" (a CLI shows "filter parameters" as its flag, e.g. --set).
     void Set(std::string_view name, std::string_view value);
     /// Parses "NAME=VALUE" and calls Set.
     void SetAssignment(std::string_view assignment);

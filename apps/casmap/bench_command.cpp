@@ -142,7 +142,9 @@ void AddBenchCommand(CLI::App& app, CommonOptions& common) {
     CLI::Option* courses = sub->get_option("--courses");
     AddThreadsOption(sub, common);
     sub->callback([flags, &common, courses] {
-        WithFlagNames(kFlags, [&] { RunBench(*flags, common, courses->count() > 0); });
+        WithSetFlag([&] {
+            WithFlagNames(kFlags, [&] { RunBench(*flags, common, courses->count() > 0); });
+        });
     });
 }
 

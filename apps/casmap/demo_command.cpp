@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "apps/casmap/commands.hpp"
+#include "apps/casmap/flag_names.hpp"
 #include "casmap/core/parallel.hpp"
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/image.hpp"
@@ -31,10 +32,12 @@ struct DemoOptions {
 
 void RunDemo(const DemoOptions& opt, const CommonOptions& common) {
     mapper::FilterParams params;
-    for (const std::string& s : opt.sets) {
-        params.SetAssignment(s);
-    }
-    params.Validate();
+    WithSetFlag([&] {
+        for (const std::string& s : opt.sets) {
+            params.SetAssignment(s);
+        }
+        params.Validate();
+    });
     mapper::SyntheticMapConfig cfg;
     cfg.seed = opt.seed;
     cfg.a = params.cas.a;

@@ -57,10 +57,12 @@ void RunFilterCommand(const FilterOptions& opt) {
             params.SetAssignment(s);
         }
     }
-    for (const std::string& s : opt.sets) {
-        params.SetAssignment(s);
-    }
-    params.Validate();
+    WithSetFlag([&] {
+        for (const std::string& s : opt.sets) {
+            params.SetAssignment(s);
+        }
+        params.Validate();
+    });
     const fs::path out(opt.out);
     const std::string ext = out.extension().string();
     if (ext != ".tiff" && ext != ".tif") {

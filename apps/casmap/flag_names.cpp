@@ -1,8 +1,40 @@
 #include "apps/casmap/flag_names.hpp"
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/text.hpp"
 
 namespace casmap::app {
+namespace {
+
+bool IsWordChar(char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+}
+
+/// `text` with every whole-word occurrence of a mapped name other than `own` replaced by its
+/// flag (a rule names other fields; its own field's name there is a word: "... 500000 baud").
+std::string ReplaceNames(const std::string& text, const FlagNames& names, const std::string& own) {
+    std::string out;
+    std::size_t at = 0;
+    while (at < text.size()) {
+        if (!IsWordChar(text[at])) {
+            out += text[at++];
+            continue;
+        }
+        std::size_t end = at;
+        while (end < text.size() && IsWordChar(text[end])) {
+            ++end;
+        }
+        const std::string word = text.substr(at, end - at);
+        const auto it = names.find(word);
+        // "--set" stays "--set": a word right after "-" is already a flag.
+        const bool flag = it != names.end() && word != own && (at == 0 || text[at - 1] != '-');
+        out += flag ? it->second : word;
+        at = end;
+    }
+    return out;
+}
+
+}  // namespace
 
 void WithFlagNames(const FlagNames& names, const std::function<void()>& body) {
     try {
@@ -22,6 +54,46 @@ void WithFlagNames(const FlagNames& names, const std::function<void()>& body) {
             }
         }
         throw;
+    }
+}
+
+void WithCommandLineFlags(const FlagNames& names, const std::function<void()>& body) {
+    try {
+        body();
+    } catch (const InputError& e) {
+        if (!e.where().empty() || e.field().empty()) {
+            throw;
+        }
+        std::string field;
+        for (const std::string& part : core::SplitList(e.field(), '/')) {
+            std::string name = part;
+            while (!name.empty() && name.front() == ' ') {
+                name.erase(0, 1);
+            }
+            while (!name.empty() && name.back() == ' ') {
+                name.pop_back();
+            }
+            const auto it = names.find(name);
+            if (it == names.end()) {
+                throw;
+            }
+            field += (field.empty() ? "" : " / ") + it->second;
+        }
+        throw MakeInputError("command line", field, e.value(),
+                             ReplaceNames(e.rule(), names, e.field()));
+    }
+}
+
+void WithWhereAsFlag(const std::string& where,
+                     const std::string& flag,
+                     const std::function<void()>& body) {
+    try {
+        body();
+    } catch (const InputError& e) {
+        if (e.where() != where) {
+            throw;
+        }
+        throw MakeInputError(flag, e.field(), e.value(), e.rule());
     }
 }
 

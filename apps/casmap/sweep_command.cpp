@@ -69,18 +69,6 @@ void RunSweep(SweepFlags& flags, const CommonOptions& common) {
     }
     opt.tests = pipeline::ParseTests(flags.tests, "--tests");
     opt.threads = common.threads;
-    for (const std::string& fixed : opt.fixed) {  // name the flag the user wrote, not --set
-        try {
-            mapper::FilterParams check;
-            check.SetAssignment(fixed);
-        } catch (const InputError& e) {
-            std::string message = e.what();
-            if (message.rfind("--set", 0) == 0) {
-                message.replace(0, 5, "--fix");
-            }
-            throw InputError(message);
-        }
-    }
     opt.Validate();  // bad input exits 2 before any work
     if (!flags.json.empty()) {
         pipeline::CheckWritableFile(flags.json, "--json");
@@ -154,7 +142,10 @@ void AddSweepCommand(CLI::App& app, CommonOptions& common) {
     sub->add_option("--sensor", opt.sensor_path,
                     "LMS 200 YAML (config/lms200.yaml; default: the built-in config)");
     AddThreadsOption(sub, common);
-    sub->callback([flags, &common] { WithFlagNames(kFlags, [&] { RunSweep(*flags, common); }); });
+    sub->callback([flags, &common] {
+        WithWhereAsFlag("filter parameters", "--fix",
+                        [&] { WithFlagNames(kFlags, [&] { RunSweep(*flags, common); }); });
+    });
 }
 
 }  // namespace casmap::app

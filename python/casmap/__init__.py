@@ -5,7 +5,8 @@ Borenstein, from Python. numpy in, numpy out; maps are float32 arrays with rows 
     filtered, classes = casmap.filter("cas", elevation, certainty, k=2)
     pi = casmap.performance_index(filtered, raw, truth)
 
-Bad input raises ValueError with the one-line message the `casmap` program prints. Long calls
+Bad input raises ValueError with the library's one-line message (the `casmap` program prints
+the same, naming its flags, e.g. --set, where the library names its settings). Long calls
 (filtering, mapping, simulating, reading and writing run files) release the GIL.
 See docs/api/python.md.
 """

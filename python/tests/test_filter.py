@@ -69,7 +69,10 @@ def test_errors_are_the_cli_messages(exe, maps_pair, tmp_path):
     assert cli.returncode == 2
     with pytest.raises(ValueError) as err:
         casmap.filter("cas", h, c, k=9)
-    assert cli.stderr.strip() == "casmap: " + str(err.value)
+    # The library names the parameter (the keyword k); the CLI shows where it came from as its
+    # flag, --set: the same field, value and rule.
+    assert str(err.value) == "filter parameters: k = 9 (allowed: integer 1..7)"
+    assert cli.stderr.strip() == "casmap: --set: k = 9 (allowed: integer 1..7)"
 
     not_tiff = tmp_path / "not.tiff"
     not_tiff.write_text("hello")
