@@ -5,7 +5,9 @@
 #include <utility>
 #include <vector>
 
+#include "casmap/core/pose.hpp"
 #include "casmap/io/scene_file.hpp"
+#include "casmap/mapper/active_window.hpp"
 #include "casmap/sim/world.hpp"
 
 namespace casmap::pipeline {
@@ -72,6 +74,28 @@ SimulatedLive MakeSimulatedSource(const SimFlags& flags, int threads, bool realt
     live.scans = std::make_unique<SimulatedSource>(
         std::move(sim.run), realtime, live.setup.scene_path + " (" + live.setup.motion_name + ")");
     return live;
+}
+
+void SetUpSimulatedLive(const LiveOptions& options, int threads, LiveSetup& setup) {
+    SimFlags flags;
+    flags.scene_path = options.scene;
+    flags.motion = options.motion;
+    flags.speed_m_s = options.speed_m_s;
+    flags.seed = options.seed;
+    flags.rig_path = options.rig;
+    SimulatedLive sim = MakeSimulatedSource(flags, threads, options.realtime);
+    mapper::ActiveWindowConfig& window = setup.config.window;
+    window.origin_x_m = sim.setup.grid.x0_m;
+    window.origin_y_m = sim.setup.grid.y0_m;
+    if (!sim.poses.empty()) {
+        const core::Pose& p0 = sim.poses.samples().front().world_T_sensor;
+        const double pitch = core::RpyFromQuaternion(p0.rotation).y();
+        window.m = mapper::LookAheadRows(window, p0.translation.z(), pitch, 0.3);
+    }
+    window.cas.speed_m_s =
+        sim.setup.vehicle ? sim.setup.vehicle_config.speed_m_s : sim.setup.table.speed_m_s;
+    setup.poses = std::make_unique<TrajectoryPoseStream>(sim.poses);
+    setup.scans = std::move(sim.scans);
 }
 
 }  // namespace casmap::pipeline

@@ -9,6 +9,7 @@
 
 #include "casmap/core/trajectory.hpp"
 #include "casmap/pipeline/live.hpp"
+#include "casmap/pipeline/live_setup.hpp"
 #include "casmap/pipeline/sim_pipeline.hpp"
 
 namespace casmap::pipeline {
@@ -21,5 +22,12 @@ struct SimulatedLive {
 
 /// Simulates the run of `flags` (InputError for bad flags, as `casmap simulate`).
 [[nodiscard]] SimulatedLive MakeSimulatedSource(const SimFlags& flags, int threads, bool realtime);
+
+/// The simulator half of MakeLiveSetup (live_setup.hpp): the run of options' scene, motion,
+/// speed, seed and rig as `setup`'s scans and poses. Anchors setup.config.window at the
+/// simulated map's grid origin (live cells coincide with `casmap simulate`'s), sets its m from
+/// the rig's height and pitch (LookAheadRows for 0.3 m obstacles) and Eq. 8's v to the rig's
+/// cruise speed (as `casmap bench` and datasets use).
+void SetUpSimulatedLive(const LiveOptions& options, int threads, LiveSetup& setup);
 
 }  // namespace casmap::pipeline

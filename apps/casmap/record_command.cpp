@@ -12,37 +12,18 @@
 // stamped on the system clock (docs/drivers.md); --poses adds a pose file in that clock
 // (docs/pose-file.md), read when recording ends, as the run's /poses so `casmap map` can map
 // the run. Whatever was received is written even when something fails afterwards.
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <string>
 #include <utility>
 
 #include "apps/casmap/commands.hpp"
+#include "apps/casmap/stop_signals.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/pipeline/record.hpp"
 
 namespace casmap::app {
 namespace {
-
-std::atomic<bool> g_record_stop{false};
-
-extern "C" void OnRecordSignal(int /*signal*/) { g_record_stop = true; }
-
-struct RecordSignals {
-    RecordSignals() {
-        g_record_stop = false;
-        std::signal(SIGINT, OnRecordSignal);
-        std::signal(SIGTERM, OnRecordSignal);
-    }
-    ~RecordSignals() {
-        std::signal(SIGINT, SIG_DFL);
-        std::signal(SIGTERM, SIG_DFL);
-    }
-    RecordSignals(const RecordSignals&) = delete;
-    RecordSignals& operator=(const RecordSignals&) = delete;
-};
 
 void PrintStats(const pipeline::RecordStats& s) {
     const drivers::DriverCounters& c = s.counters;
@@ -66,9 +47,9 @@ void RunRecord(const pipeline::RecordOptions& opt) {
         {"poses", "--poses"},   {"timeout_s", "--timeout"}, {"duration_s", "--duration"},
         {"mode", "--mode"},     {"stamps", "--stamps"}};
     try {
-        const RecordSignals signals;
+        const StopSignals signals;
         pipeline::Record(
-            opt, [] { return g_record_stop.load(); }, PrintStats);
+            opt, [] { return g_stop_requested.load(); }, PrintStats);
     } catch (const InputError& e) {
         for (const auto& [field, flag] : kFlags) {
             if (e.field() != field || e.value().empty()) {

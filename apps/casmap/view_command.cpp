@@ -7,7 +7,7 @@
 #include <string>
 
 #include "apps/casmap/commands.hpp"
-#include "casmap/view/server.hpp"
+#include "apps/casmap/view_start.hpp"
 
 namespace casmap::app {
 namespace {
@@ -19,21 +19,11 @@ struct ViewOptions {
 };
 
 void RunView(const ViewOptions& opt) {
-    view::SiteOptions site;
-    site.dir = opt.dir;
-    site.web_dir = view::FindWebDir();
-    view::Server server(site, view::ServerOptions{opt.host, opt.port});
-    server.Start();
-    if (!view::IsLoopback(opt.host)) {
-        std::fprintf(stderr,
-                     "casmap view: warning: --host %s makes %s readable by anyone who can reach "
-                     "this machine\n",
-                     opt.host.c_str(), opt.dir.c_str());
-    }
+    const auto server = StartViewServer("view", opt.dir, std::nullopt, opt.host, opt.port);
     std::printf("casmap view: %s (%s) at %s (Ctrl-C stops)\n", opt.dir.c_str(),
-                view::ToString(server.site().kind()).c_str(), server.Url().c_str());
+                view::ToString(server->site().kind()).c_str(), server->Url().c_str());
     std::fflush(stdout);
-    server.Wait();
+    server->Wait();
 }
 
 }  // namespace

@@ -1,0 +1,27 @@
+#include "apps/casmap/view_start.hpp"
+
+#include <cstdio>
+
+namespace casmap::app {
+
+std::unique_ptr<view::Server> StartViewServer(const std::string& command,
+                                              const std::string& dir,
+                                              std::optional<view::FolderKind> kind,
+                                              const std::string& host,
+                                              int port) {
+    view::SiteOptions site;
+    site.dir = dir;
+    site.web_dir = view::FindWebDir();
+    site.kind = kind;
+    auto server = std::make_unique<view::Server>(site, view::ServerOptions{host, port});
+    server->Start();
+    if (!view::IsLoopback(host)) {
+        std::fprintf(stderr,
+                     "casmap %s: warning: --host %s makes %s readable by anyone who can reach "
+                     "this machine\n",
+                     command.c_str(), host.c_str(), dir.c_str());
+    }
+    return server;
+}
+
+}  // namespace casmap::app

@@ -1,0 +1,107 @@
+#include "casmap/pipeline/live_setup.hpp"
+
+#include <cstdio>
+#include <utility>
+
+#include "casmap/core/input_error.hpp"
+#include "casmap/core/text.hpp"
+#include "casmap/drivers/telegram.hpp"
+#include "casmap/mapper/filter_params.hpp"
+#ifdef CASMAP_PIPELINE_WITH_SIM
+#include "casmap/pipeline/live_sim.hpp"
+#endif
+
+namespace casmap::pipeline {
+namespace {
+
+/// The device half: the driver's source and exactly one pose stream.
+void SetUpDevice(const LiveOptions& o, LiveSetup& setup) {
+    drivers::CheckLmsBaud(o.baud, "baud");
+    if (o.poses.empty() == o.poses_socket.empty()) {
+        throw MakeInputError("", "poses / poses_socket", "",
+                             "a scanner needs exactly one pose stream");
+    }
+    if (!o.poses.empty()) {
+        setup.poses = std::make_unique<drivers::PoseFileFollower>(o.poses);
+    } else {
+        setup.poses = std::make_unique<drivers::PoseSocket>(o.poses_socket);
+    }
+    setup.scans = MakeDeviceSource(o.device, o.baud, o.timeout_s);
+}
+
+}  // namespace
+
+LiveSetup MakeLiveSetup(const LiveOptions& o, int threads) {
+    const bool from_device = !o.device.empty();
+    const bool from_scene = !o.scene.empty() || !o.motion.empty();
+    if (from_device == from_scene) {
+        throw MakeInputError("", "device / scene", "", "give either device or scene and motion");
+    }
+    LiveSetup setup;
+    LiveConfig& cfg = setup.config;
+    cfg.out_dir = o.out;
+    cfg.window.rows = o.window_rows;
+    cfg.window.cols = o.window_cols;
+    cfg.window.obstacle_cell_m = o.obstacle_cell_m;
+    cfg.snapshot_every_s = o.snapshot_every_s;
+    cfg.duration_s = o.duration_s;
+    cfg.max_scans = o.scans;
+    cfg.timeout_s = o.timeout_s;
+    cfg.pose_tolerance_s = o.pose_tolerance_s;
+    if (from_device) {
+        SetUpDevice(o, setup);
+    } else {
+        if (o.scene.empty() || o.motion.empty()) {
+            throw MakeInputError("", "scene / motion", "", "scene and motion go together");
+        }
+#ifdef CASMAP_PIPELINE_WITH_SIM
+        SetUpSimulatedLive(o, threads, setup);
+#else
+        (void)threads;
+        throw MakeInputError("", "scene", o.scene, "built without the simulator; use device");
+#endif
+    }
+    if (o.m != 0) {
+        cfg.window.m = o.m;
+    }
+    // CAS parameters by name; the window's mapping cell and increment follow the filter's.
+    mapper::FilterParams params;
+    params.cas = cfg.window.cas;
+    for (const std::string& s : o.cas) {
+        params.SetAssignment(s);
+    }
+    params.Validate();
+    cfg.window.cas = params.cas;
+    cfg.window.a = params.cas.a;
+    cfg.window.cell_m = params.cas.cell_m;
+    cfg.Validate();
+    return setup;
+}
+
+std::string LiveTimeoutMessage(const LiveResult& r,
+                               const std::string& source_name,
+                               double timeout_s) {
+    return source_name + ": no scan for " + core::FormatNumber(timeout_s) + " s; " +
+           (r.run_file.empty() ? std::string("nothing received")
+                               : "wrote the " + std::to_string(r.status.scans) +
+                                     " scans received to " + r.run_file.string());
+}
+
+std::string LiveSummaryJson(const LiveResult& r) {
+    const LiveStatus& s = r.status;
+    const auto n = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
+    char buf[1024];
+    std::snprintf(buf, sizeof(buf),
+                  "{\"scans\": %llu, \"scans_mapped\": %llu, \"dropped\": %llu, \"poses\": %llu, "
+                  "\"rows_filtered\": %llu, \"scans_per_s\": %.3f, \"latency_p50_ms\": %.3f, "
+                  "\"latency_p99_ms\": %.3f, \"crc_errors\": %llu, \"resyncs\": %llu, "
+                  "\"reconnects\": %llu, \"beams_behind\": %llu, \"beams_late\": %llu, "
+                  "\"turns\": %llu}",
+                  n(s.scans), n(s.scans_mapped), n(s.dropped), n(s.poses), n(s.rows_filtered),
+                  s.scans_per_s, s.latency_p50_ms, s.latency_p99_ms, n(s.source.crc_errors),
+                  n(s.source.resyncs), n(s.source.reconnects), n(r.window.beams_behind),
+                  n(r.window.beams_late), n(r.window.turns));
+    return buf;
+}
+
+}  // namespace casmap::pipeline
