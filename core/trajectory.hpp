@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <vector>
 
@@ -21,6 +22,9 @@ public:
     explicit Trajectory(std::vector<TimedPose> samples);
 
     [[nodiscard]] std::optional<Pose> PoseAt(double stamp_s) const;
+    /// The same pose, found from `hint` (the sample index a previous call left there; start
+    /// with 0): nearby stamps in a row (a scan's beams) skip the binary search. Same result.
+    [[nodiscard]] std::optional<Pose> PoseAt(double stamp_s, std::size_t& hint) const;
     [[nodiscard]] bool empty() const { return samples_.empty(); }
     [[nodiscard]] std::size_t size() const { return samples_.size(); }
     [[nodiscard]] double StartTime() const { return samples_.front().stamp_s; }

@@ -337,6 +337,7 @@ Lms200Model::Lms200Model(const Lms200Config& config, std::uint64_t seed)
             dir_scale_[i] = 1.0 / std::sqrt(1.0 + dir_slope_[i] * dir_slope_[i]);
         }
     }
+    bias_key_ = SplitMix64(seed_ ^ kBiasTag);
     // Peak whose detection probability is kSureProbability: logit(q) = db / soft_edge_db.
     sure_peak_ = std::pow(
         10.0, config_.soft_edge_db * std::log(kSureProbability / (1.0 - kSureProbability)) / 10.0);
@@ -439,7 +440,7 @@ void Lms200Model::PulseSubrays(std::uint64_t scan_index,
 }
 
 double Lms200Model::MaterialBiasM(std::uint32_t surface_id) const {
-    const std::uint64_t h = SplitMix64(SplitMix64(seed_ ^ kBiasTag) ^ surface_id);
+    const std::uint64_t h = SplitMix64(bias_key_ ^ surface_id);
     const double u = static_cast<double>(h >> 11) * 0x1.0p-53;
     return (2.0 * u - 1.0) * config_.MaterialBiasMaxM();
 }

@@ -181,6 +181,33 @@ public:
                Eigen::Vector3d(dir_scale_[i] * (f.axis + dir_slope_[i] * t)));
         }
     }
+    /// The same rays as ForEachSubray rounded to float, written structure-of-arrays (the
+    /// simulator's ray batch): each array receives SubrayCount() values. Bit-identical to
+    /// casting ForEachSubray's rays; a loop the compiler can vectorise.
+    void SubraysSoA(const PulseFrame& f,
+                    float* __restrict ox,
+                    float* __restrict oy,
+                    float* __restrict oz,
+                    float* __restrict dx,
+                    float* __restrict dy,
+                    float* __restrict dz) const {
+        for (std::size_t i = 0; i < subray_count_; ++i) {
+            const double c = ring_cos_[i];
+            const double s = ring_sin_[i];
+            const double tx = c * f.u1.x() + s * f.u2.x();
+            const double ty = c * f.u1.y() + s * f.u2.y();
+            const double tz = c * f.u1.z() + s * f.u2.z();
+            const double off = origin_offset_[i];
+            const double slope = dir_slope_[i];
+            const double scale = dir_scale_[i];
+            ox[i] = static_cast<float>(f.origin.x() + off * tx);
+            oy[i] = static_cast<float>(f.origin.y() + off * ty);
+            oz[i] = static_cast<float>(f.origin.z() + off * tz);
+            dx[i] = static_cast<float>(scale * (f.axis.x() + slope * tx));
+            dy[i] = static_cast<float>(scale * (f.axis.y() + slope * ty));
+            dz[i] = static_cast<float>(scale * (f.axis.z() + slope * tz));
+        }
+    }
     /// The return of one pulse from its sub-ray hits (hits[i] belongs to PulseSubrays' ray i).
     [[nodiscard]] PulseResult FormReturn(const PulseContext& pulse,
                                          std::span<const SubrayHit> hits) const;
@@ -206,7 +233,8 @@ private:
     double origin_offset_[kMaxSubrays] = {};
     double dir_slope_[kMaxSubrays] = {};
     double dir_scale_[kMaxSubrays] = {};
-    double sure_peak_ = 1.0;  // peak with detection probability kSureProbability
+    double sure_peak_ = 1.0;      // peak with detection probability kSureProbability
+    std::uint64_t bias_key_ = 0;  // first hash of the material biases, from the seed
     std::vector<double> beam_cos_;
     std::vector<double> beam_sin_;
 };

@@ -50,11 +50,10 @@ ScanResult CastScanImpl(const World& world,
         const sensor_models::PulseFrame frame =
             model.PulseBasis(scan_index, i, pose_at(i, out.scan.BeamTime(i)));
         axes[i] = frame.axis;
-        model.ForEachSubray(frame,
-                            [&rays, first = i * m](std::size_t j, const Eigen::Vector3d& origin,
-                                                   const Eigen::Vector3d& dir) {
-                                rays.Set(first + j, origin.cast<float>(), dir.cast<float>());
-                            });
+        const std::size_t first = i * m;
+        model.SubraysSoA(frame, rays.ox.data() + first, rays.oy.data() + first,
+                         rays.oz.data() + first, rays.dx.data() + first, rays.dy.data() + first,
+                         rays.dz.data() + first);
     }
     if (m == 1) {
         world.CastBatchSingly(rays, hits);  // the ideal scanner: one ray per pulse
@@ -150,8 +149,9 @@ ScanResult CastScan(const World& world,
                              Seconds(stamp_s),
                              "the scan's beams must lie within the trajectory (" + span + ")");
     }
+    std::size_t hint = 0;  // the beams' times are close: each search starts at the last
     return CastScanImpl(world, model, stamp_s, scan_index,
-                        [&](std::size_t, double t) { return *world_T_sensor.PoseAt(t); });
+                        [&](std::size_t, double t) { return *world_T_sensor.PoseAt(t, hint); });
 }
 
 ScanResult CastScanAt(const World& world,

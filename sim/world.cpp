@@ -478,14 +478,6 @@ void RayBatch::Resize(std::size_t n) {
 
 namespace {
 
-// |cos| between a ray and an unnormalised geometric normal, with the very float operations of
-// MakeHit + Hit::normal.dot(direction) (so batch and single-ray hits agree bit for bit).
-float CosIncidence(const Eigen::Vector3f& ng, const Eigen::Vector3f& dir) {
-    const float norm = ng.norm();
-    const Eigen::Vector3f n = norm > 0.0F ? Eigen::Vector3f(ng / norm) : Eigen::Vector3f::Zero();
-    return std::abs(n.dot(dir));
-}
-
 void ResizeHits(HitBatch& hits, std::size_t n) {
     hits.distance_m.resize(n);
     hits.cos_incidence.resize(n);
@@ -540,6 +532,20 @@ void World::CastBatch(const RayBatch& rays, HitBatch& hits) const {
             rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
         }
         rtcIntersect16(valid, impl_->scene.get(), &context, &rh);
+        // |cos| of all 16 lanes at once (branch-free, so the compiler vectorises it), with the
+        // float operations of MakeHit + Hit::normal.dot(direction) in the same order, so batch
+        // and single-ray hits agree bit for bit. A degenerate normal (norm 0) gives cos 0.
+        alignas(64) float norm_lane[16];
+        alignas(64) float cos_lane[16];
+        for (std::size_t k = 0; k < 16; ++k) {
+            const float nx = rh.hit.Ng_x[k];
+            const float ny = rh.hit.Ng_y[k];
+            const float nz = rh.hit.Ng_z[k];
+            const float norm = std::sqrt(nx * nx + ny * ny + nz * nz);
+            norm_lane[k] = norm;
+            cos_lane[k] = std::abs(nx / norm * rh.ray.dir_x[k] + ny / norm * rh.ray.dir_y[k] +
+                                   nz / norm * rh.ray.dir_z[k]);
+        }
         for (std::size_t k = 0; k < m; ++k) {
             const std::size_t j = first + k;
             const unsigned int id = rh.hit.geomID[k];
@@ -548,9 +554,7 @@ void World::CastBatch(const RayBatch& rays, HitBatch& hits) const {
                 continue;
             }
             hits.distance_m[j] = rh.ray.tfar[k];
-            hits.cos_incidence[j] =
-                CosIncidence(Eigen::Vector3f(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]),
-                             Eigen::Vector3f(rays.dx[j], rays.dy[j], rays.dz[j]));
+            hits.cos_incidence[j] = norm_lane[k] > 0.0F ? cos_lane[k] : 0.0F;
             hits.reflectivity[j] = reflectivity[id];
             hits.retro_reflective[j] = retro[id];
             hits.object_id[j] = id;

@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
+#include <random>
+#include <vector>
 
 #include "casmap/core/input_error.hpp"
 
@@ -49,6 +53,59 @@ TEST(Trajectory, NoPoseOutsideItsSpan) {
     EXPECT_FALSE(traj.PoseAt(-0.001).has_value());
     EXPECT_FALSE(traj.PoseAt(1.001).has_value());
     EXPECT_TRUE(traj.PoseAt(1.0).has_value());
+}
+
+// The pose at t by a plain binary search (the definition PoseAt with a hint must reproduce).
+Pose ReferencePoseAt(const std::vector<TimedPose>& s, double t) {
+    const auto after = std::upper_bound(s.begin(), s.end(), t,
+                                        [](double x, const TimedPose& p) { return x < p.stamp_s; });
+    if (after == s.end()) {
+        return s.back().world_T_sensor;
+    }
+    const TimedPose& a = *(after - 1);
+    return Interpolate(a.world_T_sensor, after->world_T_sensor,
+                       (t - a.stamp_s) / (after->stamp_s - a.stamp_s));
+}
+
+TEST(Trajectory, HintedLookupIsBitIdenticalToTheBinarySearch) {
+    std::mt19937_64 rng(20261127);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<TimedPose> samples;
+    double t = 0.0;
+    for (int i = 0; i < 2000; ++i) {  // uneven stamps, turning poses
+        samples.push_back(
+            {t, PoseFromXyzRpy({u(rng), u(rng), u(rng)}, {u(rng), u(rng), 3.0 * u(rng)})});
+        t += 1e-4 + 1e-3 * u(rng);
+    }
+    const Trajectory traj(samples);
+    std::size_t hint = 0;
+    double stamp = traj.StartTime();
+    for (int k = 0; k < 20000; ++k) {
+        const double r = u(rng);
+        if (r < 0.6) {
+            stamp += 1e-4 * u(rng);  // beams of a scan: small steps forward
+        } else if (r < 0.8) {
+            stamp += 0.05 * u(rng);  // a jump forward
+        } else if (r < 0.9) {
+            stamp -= 0.02 * u(rng);  // back (interleaved turns)
+        } else if (r < 0.95) {
+            stamp = samples[static_cast<std::size_t>(u(rng) * 1999.0)].stamp_s;  // on a sample
+        } else {
+            hint = static_cast<std::size_t>(u(rng) * 2100.0);  // any hint is safe
+        }
+        stamp = std::clamp(stamp, traj.StartTime(), traj.EndTime());
+        if (k % 997 == 0) {
+            stamp = traj.EndTime();
+        }
+        const std::optional<Pose> got = traj.PoseAt(stamp, hint);
+        ASSERT_TRUE(got.has_value());
+        const Pose want = ReferencePoseAt(samples, stamp);
+        ASSERT_EQ(got->translation, want.translation) << "stamp " << stamp;
+        ASSERT_EQ(got->rotation.coeffs(), want.rotation.coeffs()) << "stamp " << stamp;
+        ASSERT_EQ(traj.PoseAt(stamp)->translation, want.translation);
+    }
+    EXPECT_FALSE(traj.PoseAt(traj.EndTime() + 1e-9, hint).has_value());
+    EXPECT_FALSE(traj.PoseAt(-1e-9, hint).has_value());
 }
 
 TEST(Trajectory, RejectsNonIncreasingStamps) {
