@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "apps/casmap/commands.hpp"
+#include "apps/casmap/flag_names.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/image.hpp"
@@ -38,7 +39,9 @@ pipeline::MapSettings ParseMapSettings(const MapOptions& opt) {
     settings.mode = pipeline::ParseMapperMode(opt.mapper, "--mapper");
     settings.unknown = mapper::ParseUnknown(opt.unknown, "command line", "--unknown");
     settings.prefilter = pipeline::ParsePrefilter(opt.prefilter, "--prefilter");
-    pipeline::ApplyStageSettings(settings, opt.set, "--set");  // validates
+    WithSetFlag([&] {  // FilterParams names its settings list "filter parameters"
+        pipeline::ApplyStageSettings(settings, opt.set, "--set");  // validates
+    });
     return settings;
 }
 

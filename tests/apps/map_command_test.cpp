@@ -250,7 +250,8 @@ TEST(MapCommand, BadModeFlagsExitTwoNamingTheFlag) {
              {"--set shadow.min_angle_deg=5", "the pre-filter is none"},
              {"--prefilter shadow --set range_jump.jump_min_m=0.2", "the pre-filter is shadow"},
              {"--set kalman.mahalanobis_gate=2", "the mapper mode is paper"},
-             {"--prefilter shadow --set shadow.min_angle_deg=95", "shadow.min_angle_deg = 95"},
+             {"--prefilter shadow --set shadow.min_angle_deg=95",
+              "--set: shadow.min_angle_deg = 95"},
              {"--prefilter range_jump --set range_jump.jump_min_m=0.04", "range_jump.margin_m"},
              {"--mapper kalman --set kalman.min_variance_m2=0", "kalman.min_variance_m2"},
              {"--prefilter shadow --set shadow.window", "NAME=VALUE"}}) {
