@@ -76,7 +76,7 @@ EOF
 
 command="scripts/scoreboard.sh --seed $seed --preset $preset --samples $samples --threads $threads"
 args=(--courses "$out/courses/bench.json" --command "$command" --seed "$seed" --preset "$preset"
-      --commit "$(git -C "$root" rev-parse --short HEAD)")
+      --commit "$(git -C "$root" describe --always --dirty 2>/dev/null || echo unknown)")
 for t in "${terrain[@]}"; do
     args+=(--terrain "$t")
 done
