@@ -8,7 +8,8 @@
 #                         [--threads N] [--samples N] [--no-write]
 #
 # --casmap   the casmap binary (default: build/apps/casmap/casmap)
-# --seed     simulator seed of every run (default 1)
+# --seed     simulator seed(s) of the course runs, e.g. 3 or 3,7 (default 1); the terrain
+#            runs use the first
 # --preset   filter-parameter preset (default paper: the paper's values)
 # --out      working directory for the bench outputs (default out/scoreboard)
 # --samples  dataset samples generated (config/datasets/default.yaml); the terrain ones are
@@ -34,7 +35,7 @@ while [[ $# -gt 0 ]]; do
         --threads) threads="$2"; shift 2 ;;
         --samples) samples="$2"; shift 2 ;;
         --no-write) write=0; shift ;;
-        -h|--help) sed -n 2,17p "$0"; exit 0 ;;
+        -h|--help) sed -n 2,18p "$0"; exit 0 ;;
         *) echo "scoreboard.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
     esac
 done
@@ -45,11 +46,17 @@ fi
 py=/usr/bin/python3
 mkdir -p "$out"
 run() { echo "+ $*" >&2; nice -n 10 "$@"; }
-common=(--pipelines all --seed "$seed" --preset "$preset" --no-sheets --threads "$threads")
+IFS=',' read -r -a seeds <<< "$seed"
+common=(--pipelines all --seed "${seeds[0]}" --preset "$preset" --no-sheets --threads "$threads")
 
-# 1. The paper's courses, every test.
-run "$casmap" bench --courses 1-16 --tests T,TR,TP,TRP "${common[@]}" --out "$out/courses" \
-    > "$out/courses.log"
+# 1. The paper's courses, every test, per seed.
+courses=()
+for s in "${seeds[@]}"; do
+    run "$casmap" bench --courses 1-16 --tests T,TR,TP,TRP --pipelines all --seed "$s" \
+        --preset "$preset" --no-sheets --threads "$threads" --out "$out/courses_s$s" \
+        > "$out/courses_s$s.log"
+    courses+=(--courses "$out/courses_s$s/bench.json")
+done
 terrain=("outdoor (vehicle)=$out/outdoor/bench.json")
 # 2. The outdoor scene, driven.
 run "$casmap" bench --scenes "$root/scenes/outdoor.yaml" --motion vehicle "${common[@]}" \
@@ -75,7 +82,7 @@ EOF
 )
 
 command="scripts/scoreboard.sh --seed $seed --preset $preset --samples $samples --threads $threads"
-args=(--courses "$out/courses/bench.json" --command "$command" --seed "$seed" --preset "$preset"
+args=("${courses[@]}" --command "$command" --seed "$seed" --preset "$preset"
       --commit "$(git -C "$root" describe --always --dirty 2>/dev/null || echo unknown)")
 for t in "${terrain[@]}"; do
     args+=(--terrain "$t")

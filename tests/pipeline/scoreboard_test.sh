@@ -47,6 +47,15 @@ for test in ["T", "TP"]:
 assert "### Lowest-PI wins per test" in text and "### Terrain runs" in text
 print("scoreboard ok:", len(names), "pipelines")
 PY
+# Two seeds: wins per test and seed, detailed tables pooled over the seeds.
+"$casmap" bench --courses 4,5 --tests T,TP --pipelines all --seed 2 --no-sheets --threads 2 \
+    --courses-dir "$src/scenes/courses" --out "$work/b2" > /dev/null
+/usr/bin/python3 "$src/scripts/scoreboard.py" --courses "$work/b/bench.json" \
+    --courses "$work/b2/bench.json" --command "test" --seed 1,2 --preset paper > "$work/two.md"
+grep -q '^| pipeline | T s1 | T s2 | TP s1 | TP s2 | every pole kept | RMSE below Kalman |$' \
+    "$work/two.md"
+grep -q '^#### Test TP (4 runs: 2 courses x seeds 1, 2)$' "$work/two.md"
+grep -q '^| cas | [0-9.]* | [0-9]/4 |' "$work/two.md"
 # Bad input: exit 2, the file named.
 if /usr/bin/python3 "$src/scripts/scoreboard.py" --courses "$work/none.json" --command x \
     --seed 1 --preset paper 2> "$work/err"; then
