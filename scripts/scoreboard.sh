@@ -10,7 +10,9 @@
 # --casmap   the casmap binary (default: build/apps/casmap/casmap)
 # --seed     simulator seed(s) of the course runs, e.g. 3 or 3,7 (default 1); the terrain
 #            runs use the first
-# --preset   filter-parameter preset (default paper: the paper's values)
+# --preset   filter-parameter preset (default paper: the paper's values), or a comma list of
+#            presets merged into one: their `pipelines:` sections, a later preset's section
+#            replacing an earlier one's for the same pipeline; their `set:` must agree
 # --out      working directory for the bench outputs (default out/scoreboard)
 # --samples  dataset samples generated (config/datasets/default.yaml); the terrain ones are
 #            benched (default 16)
@@ -35,7 +37,7 @@ while [[ $# -gt 0 ]]; do
         --threads) threads="$2"; shift 2 ;;
         --samples) samples="$2"; shift 2 ;;
         --no-write) write=0; shift ;;
-        -h|--help) sed -n 2,18p "$0"; exit 0 ;;
+        -h|--help) sed -n 2,20p "$0"; exit 0 ;;
         *) echo "scoreboard.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
     esac
 done
@@ -47,13 +49,40 @@ py=/usr/bin/python3
 mkdir -p "$out"
 run() { echo "+ $*" >&2; nice -n 10 "$@"; }
 IFS=',' read -r -a seeds <<< "$seed"
-common=(--pipelines all --seed "${seeds[0]}" --preset "$preset" --no-sheets --threads "$threads")
+bench_preset="$preset"
+if [[ "$preset" == *,* ]]; then
+    bench_preset="$out/merged_preset.yaml"
+    "$py" - "$root/config/presets" "$preset" "$bench_preset" <<'EOF'
+import os, sys, yaml
+folder, names, out = sys.argv[1], sys.argv[2].split(","), sys.argv[3]
+shared, sections = None, {}
+for name in names:
+    path = name if ("/" in name or name.endswith(".yaml")) else os.path.join(folder, name + ".yaml")
+    try:
+        data = yaml.load(open(path), Loader=yaml.BaseLoader) or {}  # scalars as text
+    except OSError as e:
+        print(f"scoreboard.sh: --preset {name}: {e}", file=sys.stderr)
+        sys.exit(2)
+    s = data.get("set") or {}
+    if shared is not None and s != shared:
+        print(f"scoreboard.sh: --preset {name}: set: {s} differs from the earlier presets' "
+              f"{shared} (merged presets must share set:)", file=sys.stderr)
+        sys.exit(2)
+    shared = s
+    sections.update(data.get("pipelines") or {})
+with open(out, "w") as f:
+    f.write(f"# merged by scripts/scoreboard.sh from {', '.join(names)} (later sections win)\n")
+    yaml.safe_dump({"description": "merged: " + ", ".join(names), "set": shared,
+                    "pipelines": sections}, f, sort_keys=False)
+EOF
+fi
+common=(--pipelines all --seed "${seeds[0]}" --preset "$bench_preset" --no-sheets --threads "$threads")
 
 # 1. The paper's courses, every test, per seed.
 courses=()
 for s in "${seeds[@]}"; do
     run "$casmap" bench --courses 1-16 --tests T,TR,TP,TRP --pipelines all --seed "$s" \
-        --preset "$preset" --no-sheets --threads "$threads" --out "$out/courses_s$s" \
+        --preset "$bench_preset" --no-sheets --threads "$threads" --out "$out/courses_s$s" \
         > "$out/courses_s$s.log"
     courses+=(--courses "$out/courses_s$s/bench.json")
 done
