@@ -2,13 +2,18 @@
 #include <string>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/drivers/virtual_lms200.hpp"
 
 namespace casmap::drivers {
 namespace {
+// Fault settings are named by their key in the "crc=P,..." spec; a CLI shows "faults" as its
+// flag.
+const char* const kWhere = "faults";
+
 void CheckRate(double rate, const std::string& field) {
     if (!(rate >= 0.0 && rate <= 1.0)) {
-        throw MakeInputError("--faults", field, std::to_string(rate), "a probability in [0, 1]");
+        throw MakeInputError(kWhere, field, core::FormatNumber(rate), "a probability in [0, 1]");
     }
 }
 }  // namespace
@@ -19,11 +24,11 @@ void FaultConfig::Validate() const {
     CheckRate(drop_rate, "drop");
     CheckRate(collide_rate, "collide");
     if (!(disconnect_period_s >= 0.0)) {
-        throw MakeInputError("--faults", "disconnect", std::to_string(disconnect_period_s),
+        throw MakeInputError(kWhere, "disconnect", core::FormatNumber(disconnect_period_s),
                              "seconds >= 0 (0 = never)");
     }
     if (!(offline_s >= 0.0)) {
-        throw MakeInputError("--faults", "offline_s", std::to_string(offline_s), ">= 0");
+        throw MakeInputError(kWhere, "offline_s", core::FormatNumber(offline_s), ">= 0");
     }
 }
 
@@ -40,14 +45,14 @@ FaultConfig ParseFaults(std::string_view spec) {
         const std::size_t eq = item.find('=');
         const std::string rule = "NAME=VALUE with NAME in crc, garbage, drop, collide, disconnect";
         if (eq == std::string::npos) {
-            throw MakeInputError("--faults", item, "", rule);
+            throw MakeInputError(kWhere, item, "", rule);
         }
         const std::string key = item.substr(0, eq);
         const std::string text = item.substr(eq + 1);
         char* stop = nullptr;
         const double value = std::strtod(text.c_str(), &stop);
         if (text.empty() || stop == nullptr || *stop != '\0') {
-            throw MakeInputError("--faults", key, text, "a number");
+            throw MakeInputError(kWhere, key, text, "a number");
         }
         if (key == "crc") {
             f.crc_rate = value;
@@ -60,7 +65,7 @@ FaultConfig ParseFaults(std::string_view spec) {
         } else if (key == "disconnect") {
             f.disconnect_period_s = value;
         } else {
-            throw MakeInputError("--faults", key, text, rule);
+            throw MakeInputError(kWhere, key, text, rule);
         }
     }
     f.Validate();
@@ -68,7 +73,7 @@ FaultConfig ParseFaults(std::string_view spec) {
 }
 
 void VirtualLms200Config::Validate() const {
-    CheckLmsBaud(power_on_baud, "--baud");
+    CheckLmsBaud(power_on_baud, "power_on_baud");
     if (!variant.IsValid()) {
         throw MakeInputError(
             "virtual LMS 200", "variant",

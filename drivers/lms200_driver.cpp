@@ -33,9 +33,9 @@ void CheckPositive(double v, const char* field) {
 
 void DriverConfig::Validate() const {
     if (device.empty()) {
-        throw MakeInputError("LMS 200 driver", "--device", "", "a serial device path is required");
+        throw MakeInputError("LMS 200 driver", "device", "", "a serial device path is required");
     }
-    CheckLmsBaud(baud, "--baud");
+    CheckLmsBaud(baud, "baud");
     if (variant && !variant->IsValid()) {
         throw MakeInputError(
             "LMS 200 driver", "variant",

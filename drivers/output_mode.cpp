@@ -137,7 +137,7 @@ OutputMode ParseOutputMode(const std::string& text, const std::string& field) {
             }
         }
     }
-    throw MakeInputError("command line", field, shown, kModeRule);
+    throw MakeInputError("", field, shown, kModeRule);
 }
 
 Telegram MakeOutputModeRequest(const OutputMode& m) {

@@ -48,7 +48,7 @@ void PseudoTerminal::Open(const std::string& link_path, int baud) {
         struct stat st {};
         if (lstat(link_path.c_str(), &st) == 0 && !S_ISLNK(st.st_mode)) {
             Close();
-            throw MakeInputError(link_path, "--link", "", "exists and is not a symlink");
+            throw MakeInputError(link_path, "link_path", "", "exists and is not a symlink");
         }
         const std::string tmp = link_path + ".tmp" + std::to_string(getpid());
         unlink(tmp.c_str());
@@ -58,7 +58,7 @@ void PseudoTerminal::Open(const std::string& link_path, int baud) {
             unlink(tmp.c_str());
             Close();
             if (e == ENOENT || e == ENOTDIR || e == EACCES || e == EROFS || e == EISDIR) {
-                throw MakeInputError(link_path, "--link", "",
+                throw MakeInputError(link_path, "link_path", "",
                                      std::string("cannot create the link: ") + std::strerror(e));
             }
             throw std::system_error(e, std::generic_category(), "symlink " + link_path);

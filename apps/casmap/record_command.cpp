@@ -43,9 +43,11 @@ void PrintStats(const pipeline::RecordStats& s) {
 /// about the options themselves (no file) read "command line: --flag = value (rule)".
 void RunRecord(const pipeline::RecordOptions& opt) {
     static const std::pair<const char*, const char*> kFlags[] = {
-        {"device", "--device"}, {"variant", "--variant"},   {"out", "--out"},
-        {"poses", "--poses"},   {"timeout_s", "--timeout"}, {"duration_s", "--duration"},
-        {"mode", "--mode"},     {"stamps", "--stamps"}};
+        {"device", "--device"},       {"baud", "--baud"},
+        {"variant", "--variant"},     {"out", "--out"},
+        {"poses", "--poses"},         {"timeout_s", "--timeout"},
+        {"duration_s", "--duration"}, {"mode", "--mode"},
+        {"stamps", "--stamps"}};
     try {
         const StopSignals signals;
         pipeline::Record(

@@ -170,7 +170,7 @@ TEST(Telegram, BaudWordsMatchReference) {
     EXPECT_EQ(BaudWord(38400), 0x8019);
     EXPECT_EQ(BaudWord(500000), 0x8001);
     EXPECT_THROW((void)MakeBaudRequest(57600), InputError);
-    EXPECT_THROW(CheckLmsBaud(115200, "--baud"), InputError);
+    EXPECT_THROW(CheckLmsBaud(115200, "baud"), InputError);
 }
 
 TEST(Telegram, ReplyLengthsMatchTheChecklist) {
