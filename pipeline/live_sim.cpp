@@ -58,22 +58,38 @@ private:
     Clock::time_point start_;
 };
 
+/// The run of `setup` as `casmap simulate` makes it, without the truth.
+io::RunData SimulateWithoutTruth(const SimSetup& setup, int threads) {
+    const core::Scene scene = io::LoadScene(setup.scene_path);
+    const sim::World world(scene);
+    const core::Trajectory true_poses = RigTrajectory(setup, scene);
+    SimulateRunOptions options;
+    options.threads = threads;
+    options.truth = false;
+    return SimulateRun(setup, scene, world, true_poses, options).run;
+}
+
 }  // namespace
 
 SimulatedLive MakeSimulatedSource(const SimFlags& flags, int threads, bool realtime) {
     SimulatedLive live;
     live.setup = ResolveSimSetup(flags);
-    const core::Scene scene = io::LoadScene(live.setup.scene_path);
-    const sim::World world(scene);
-    const core::Trajectory true_poses = RigTrajectory(live.setup, scene);
-    SimulateRunOptions options;
-    options.threads = threads;
-    options.truth = false;
-    SimulatedRun sim = SimulateRun(live.setup, scene, world, true_poses, options);
+    SimulatedRun sim;
+    sim.run = SimulateWithoutTruth(live.setup, threads);
     live.poses = sim.run.poses;
     live.scans = std::make_unique<SimulatedSource>(
         std::move(sim.run), realtime, live.setup.scene_path + " (" + live.setup.motion_name + ")");
     return live;
+}
+
+io::RunData SimulateServedRun(const ServeOptions& options, int threads) {
+    SimFlags flags;
+    flags.scene_path = options.scene;
+    flags.motion = options.motion;
+    flags.speed_m_s = options.speed_m_s;
+    flags.seed = options.seed;
+    flags.rig_path = options.rig;
+    return SimulateWithoutTruth(ResolveSimSetup(flags), threads);
 }
 
 void SetUpSimulatedLive(const LiveOptions& options, int threads, LiveSetup& setup) {

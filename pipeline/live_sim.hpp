@@ -1,15 +1,16 @@
 #pragma once
 
-// The simulator as a live scan source (simulator builds only): the run of `casmap simulate`
-// with the same flags, simulated at start-up, then handed out scan by scan at the scanner's
-// rate (`realtime`: scan i at start + (stamp_i - stamp_0) on the steady clock) or as fast as
-// the session takes them.
+// The simulator as a source for `casmap live` and `casmap serve` (simulator builds only): the run
+// of `casmap simulate` with the same flags, simulated at start-up, then handed out scan by scan at
+// the scanner's rate (`realtime`: scan i at start + (stamp_i - stamp_0) on the steady clock) or as
+// fast as the session takes them.
 
 #include <memory>
 
 #include "casmap/core/trajectory.hpp"
 #include "casmap/pipeline/live.hpp"
 #include "casmap/pipeline/live_setup.hpp"
+#include "casmap/pipeline/serve.hpp"
 #include "casmap/pipeline/sim_pipeline.hpp"
 
 namespace casmap::pipeline {
@@ -29,5 +30,9 @@ struct SimulatedLive {
 /// the rig's height and pitch (LookAheadRows for 0.3 m obstacles) and Eq. 8's v to the rig's
 /// cruise speed (as `casmap bench` and datasets use).
 void SetUpSimulatedLive(const LiveOptions& options, int threads, LiveSetup& setup);
+
+/// The simulator half of Serve (serve.hpp): the run (scans and poses, no truth) of options'
+/// scene, motion, speed, seed and rig, as `casmap simulate` makes it.
+[[nodiscard]] io::RunData SimulateServedRun(const ServeOptions& options, int threads);
 
 }  // namespace casmap::pipeline

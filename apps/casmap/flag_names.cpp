@@ -26,8 +26,12 @@ std::string ReplaceNames(const std::string& text, const FlagNames& names, const 
         }
         const std::string word = text.substr(at, end - at);
         const auto it = names.find(word);
-        // "--set" stays "--set": a word right after "-" is already a flag.
-        const bool flag = it != names.end() && word != own && (at == 0 || text[at - 1] != '-');
+        // Not a part of a path or a flag: "/data/run.h5" and "--set" keep their words.
+        const bool path_or_flag =
+            (at > 0 && (text[at - 1] == '-' || text[at - 1] == '/' || text[at - 1] == '.')) ||
+            (end < text.size() && text[end] == '/') ||
+            (end + 1 < text.size() && text[end] == '.' && IsWordChar(text[end + 1]));
+        const bool flag = it != names.end() && word != own && !path_or_flag;
         out += flag ? it->second : word;
         at = end;
     }
@@ -57,10 +61,17 @@ void WithFlagNames(const FlagNames& names, const std::function<void()>& body) {
     }
 }
 
-void WithCommandLineFlags(const FlagNames& names, const std::function<void()>& body) {
+void WithCommandLineFlags(const FlagNames& names,
+                          const std::function<void()>& body,
+                          const FlagPaths& paths) {
     try {
         body();
     } catch (const InputError& e) {
+        const auto path = paths.find(e.field());
+        if (path != paths.end() && !path->second.empty() && e.where() == path->second &&
+            names.count(e.field()) != 0) {
+            throw MakeInputError(e.where(), names.at(e.field()), e.value(), e.rule());
+        }
         if (!e.where().empty() || e.field().empty()) {
             throw;
         }
