@@ -42,7 +42,8 @@ void CheckPixels(const core::MapF& map,
 
 bool NeedsCertainty(FilterMethod method) {
     return method == FilterMethod::kCas || method == FilterMethod::kCasTerrain ||
-           method == FilterMethod::kCasTrail || method == FilterMethod::kCasMedian;
+           method == FilterMethod::kCasTrail || method == FilterMethod::kCasMedian ||
+           method == FilterMethod::kCasEdge;
 }
 
 void CheckFilterInputs(FilterMethod method,

@@ -16,7 +16,8 @@ struct FilterInputNames {
     std::string certainty = "certainty";
 };
 
-/// True for the methods that read a certainty map (cas, cas_terrain, cas_trail, cas_median).
+/// True for the methods that read a certainty map (cas, cas_terrain, cas_trail, cas_median,
+/// cas_edge).
 [[nodiscard]] bool NeedsCertainty(FilterMethod method);
 
 /// Checks an elevation map H (m) and certainty map C (counts; empty = not given) for `method`:

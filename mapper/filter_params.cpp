@@ -139,6 +139,10 @@ const std::map<std::string, Setter, std::less<>>& Setters() {
                              auto v) { p.cas.support_tol_m = ParseRange(n, v, 0, kInf, true); }},
         {"support_min",
          [](FilterParams& p, auto n, auto v) { p.cas.support_min = ParseInt(n, v, 1, 48); }},
+        {"edge_tol_m", [](FilterParams& p, auto n,
+                          auto v) { p.cas.edge_tol_m = ParseRange(n, v, 0, kInf, true); }},
+        {"edge_min",
+         [](FilterParams& p, auto n, auto v) { p.cas.edge_min = ParseInt(n, v, 1, 225); }},
         {"window",
          [](FilterParams& p, auto n, auto v) {
              const int w = ParseInt(n, v, 3, 15);
@@ -228,7 +232,8 @@ FilterMethod ParseFilterMethod(std::string_view name, const std::string& field) 
         }
     }
     throw MakeInputError("", field, std::string(name),
-                         "allowed: cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median");
+                         "allowed: cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median|"
+                         "cas_edge");
 }
 
 std::string_view ToString(FilterMethod method) {
@@ -249,6 +254,8 @@ std::string_view ToString(FilterMethod method) {
             return "cas_trail";
         case FilterMethod::kCasMedian:
             return "cas_median";
+        case FilterMethod::kCasEdge:
+            return "cas_edge";
     }
     return "?";
 }
@@ -264,7 +271,7 @@ const std::vector<FilterMethod>& AllFilterMethodsWithVariants() {
     static const std::vector<FilterMethod> all = {
         FilterMethod::kCas,      FilterMethod::kWiener,   FilterMethod::kAverage,
         FilterMethod::kMedian,   FilterMethod::kCwm,      FilterMethod::kCasTerrain,
-        FilterMethod::kCasTrail, FilterMethod::kCasMedian};
+        FilterMethod::kCasTrail, FilterMethod::kCasMedian, FilterMethod::kCasEdge};
     return all;
 }
 
@@ -329,6 +336,10 @@ void FilterParams::Validate() const {
           cas.support_tol_m, "allowed: > 0");
     check(cas.support_min >= 1 && cas.support_min <= 48, "support_min", cas.support_min,
           "allowed: integer 1..48");
+    check(cas.edge_tol_m > 0 && std::isfinite(cas.edge_tol_m), "edge_tol_m", cas.edge_tol_m,
+          "allowed: > 0");
+    check(cas.edge_min >= 1 && cas.edge_min <= 225, "edge_min", cas.edge_min,
+          "allowed: integer 1..225");
     check(baseline.window >= 3 && baseline.window <= 15 && baseline.window % 2 == 1, "window",
           baseline.window, "allowed: odd integer 3..15");
     check(!baseline.noise || (*baseline.noise >= 0 && std::isfinite(*baseline.noise)), "noise",

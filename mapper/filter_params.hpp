@@ -15,7 +15,8 @@ namespace casmap::mapper {
 /// (docs/paper-notes.md "Beyond the paper"): cas_terrain (heights relative to a local ground
 /// estimate) and cas_trail (removal also of low-certainty cells without support at their
 /// own height: the mixed-pixel trail beside a pole), cas_median (cas_trail's kept objects at
-/// their height, the median everywhere else).
+/// their height, the median everywhere else), cas_edge (the median of cas_trail's output,
+/// with objects and same-height surfaces such as box edges kept at their height).
 enum class FilterMethod {
     kCas,
     kWiener,
@@ -24,10 +25,11 @@ enum class FilterMethod {
     kCwm,
     kCasTerrain,
     kCasTrail,
-    kCasMedian
+    kCasMedian,
+    kCasEdge
 };
 
-/// "cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median" -> method; throws InputError
+/// "cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median|cas_edge" -> method; throws InputError
 /// naming `field`.
 [[nodiscard]] FilterMethod ParseFilterMethod(std::string_view name,
                                              const std::string& field = "method");
@@ -73,6 +75,8 @@ struct CasParams {
     Support support = Support::kOff;   // kHeight for cas_trail
     double support_tol_m = 0.05;       // "same height" (the spike threshold)
     int support_min = 5;               // known same-height window cells needed to keep a cell
+    int edge_min = 7;                  // cas_edge: known same-height window cells of a surface
+    double edge_tol_m = 0.06;          // cas_edge: "same height" of the surface test
 
     /// Eq. 8: A = a * (round(s / (v dt)) + 2), or the given A.
     [[nodiscard]] double EffectiveA() const;

@@ -30,6 +30,8 @@ FilterResult RunFilter(FilterMethod method,
         }
         case FilterMethod::kCasMedian:
             return CasMedianFilter(elevation, certainty, params);
+        case FilterMethod::kCasEdge:
+            return CasEdgeFilter(elevation, certainty, params);
     }
     return {};
 }

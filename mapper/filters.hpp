@@ -50,6 +50,16 @@ void CasFilterInto(const core::MapF& elevation,
                                            const core::MapF& certainty,
                                            const FilterParams& params);
 
+/// cas_edge (mapper/cas_edge.cpp): T = cas_trail's output, M = its median
+/// (params.baseline); candidates = known cells cas_trail left untouched with |h - M| >
+/// support_tol_m; objects = candidates with >= edge_min known window cells within edge_tol_m of
+/// their height (surfaces: box edges, corners) or the highest certainty among the candidates of
+/// their window (ties: first in row-major order). Output: h on objects, M elsewhere. Classes =
+/// cas_trail's. Throws InputError as RunFilter.
+[[nodiscard]] FilterResult CasEdgeFilter(const core::MapF& elevation,
+                                         const core::MapF& certainty,
+                                         const FilterParams& params);
+
 /// Baselines (mapper/baseline_filters.cpp). Every one replicates the edge pixels beyond the
 /// border (OpenCV BORDER_REPLICATE, the mode cv::medianBlur uses internally).
 [[nodiscard]] core::MapF WienerFilter(const core::MapF& elevation, const BaselineParams& params);

@@ -50,6 +50,8 @@ const std::vector<PipelineSpec>& AllPipelines() {
          "Eq. 1-6 map, CAS that also removes low-certainty cells without same-height support"},
         {"cas_median", kPaper, kNone, FilterMethod::kCasMedian,
          "Eq. 1-6 map, cas_trail's objects at their height, 5 x 5 median elsewhere"},
+        {"cas_edge", kPaper, kNone, FilterMethod::kCasEdge,
+         "Eq. 1-6 map, median of cas_trail's map; objects and box edges at their height"},
         {"kalman", kKalman, kNone, std::nullopt,
          "Kalman fusion of each scan's lowest point per cell (Fankhauser et al.), no filter"},
         {"kalman_median", kKalman, kNone, FilterMethod::kMedian, "Kalman map, 5 x 5 median"},

@@ -1,4 +1,4 @@
-// casmap filter --method cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median --elevation
+// casmap filter --method cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median|cas_edge --elevation
 // H.tiff
 // [--certainty C.tiff]
 //               [--preset NAME] [--set NAME=VALUE]... --out OUT.tiff [--threads N]
@@ -121,7 +121,7 @@ void AddFilterCommand(CLI::App& app, CommonOptions& common) {
     CLI::App* sub =
         app.add_subcommand("filter", "Filter an elevation map: CAS (Eq. 7-10) or a 5x5 baseline");
     sub->add_option("--method", opt->method,
-                    "cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median")
+                    "cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median|cas_edge")
         ->required();
     sub->add_option("--elevation", opt->elevation, "elevation map H, 32-bit float TIFF (m)")
         ->required();

@@ -26,6 +26,7 @@ TEST(BenchPipelines, RegistryNamesAreStableAndThePaperFiveComeFirst) {
                                                "cas_terrain",
                                                "cas_trail",
                                                "cas_median",
+                                               "cas_edge",
                                                "kalman",
                                                "kalman_median",
                                                "shadow",

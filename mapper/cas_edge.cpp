@@ -1,0 +1,91 @@
+// cas_edge (docs/paper-notes.md "cas_edge"): the median votes over the map cas_trail cleaned,
+// and CAS keeps objects and box edges at their measured height.
+//
+// Three observations on the simulated courses (training seeds) drive it:
+//   1. the 5 x 5 median of the RAW map lets a dense mixed-pixel trail vote: where the trail
+//      covers half the window the median returns a trail height. cas_trail has already removed
+//      those cells (to 0 / the local ground / NaN), so the median here runs over cas_trail's
+//      output: removed cells vote for the floor, cells CAS filled vote with their fill value;
+//   2. the median rounds the top side of every box edge and corner (a corner cell has 9 box
+//      cells of 25 in its window), the largest error the median-based pipelines leave on box
+//      courses; yet the raw map measures those cells well (many hits, neighbours at the same
+//      height). A cell that stands out from the median and has at least edge_min known cells
+//      of its window within edge_tol_m of its own height is a surface, not a mixed pixel: kept;
+//   3. a pole's halo (its top smeared onto 2-8 neighbouring cells) has fewer same-height
+//      neighbours than a surface; among such unsupported candidates only the certainty peak of
+//      each window (cas_median's rule) is the object.
+// So, with T = cas_trail's output and M = median(T):
+//   candidate  a known (c > 0) cell cas_trail left untouched with |h - M| > support_tol_m;
+//   object     a candidate with >= edge_min known window cells (itself included) within
+//              edge_tol_m of h, or the candidate of highest certainty among the candidates of
+//              its (2k+1)^2 window (ties: first in row-major order);
+//   out = h    on objects, M everywhere else.
+// Every value comes from the unfiltered map, cas_trail's output or the median; no floating-point
+// reduction, so the output is the same bit for bit at any thread count.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "casmap/mapper/filters.hpp"
+
+namespace casmap::mapper {
+
+FilterResult CasEdgeFilter(const core::MapF& elevation,
+                           const core::MapF& certainty,
+                           const FilterParams& params) {
+    params.Validate();
+    CasParams cas = params.cas;
+    cas.support = Support::kHeight;
+    FilterResult out = CasFilter(elevation, certainty, cas);  // cas_trail, classes kept
+    const core::MapF median = MedianFilter(out.elevation, params.baseline);
+    const auto tol = static_cast<float>(cas.support_tol_m);
+    const auto edge_tol = static_cast<float>(cas.edge_tol_m);
+    const int rows = elevation.rows;
+    const int cols = elevation.cols;
+    const int k = cas.k;
+    const std::size_t cells = elevation.data.size();
+    const auto index = [cols](int i, int j) {
+        return static_cast<std::size_t>(i) * static_cast<std::size_t>(cols) +
+               static_cast<std::size_t>(j);
+    };
+    const auto known = [&](std::size_t n) {
+        return certainty.data[n] > 0.0F && !std::isnan(elevation.data[n]);
+    };
+    std::vector<std::uint8_t> candidate(cells, 0);
+    for (std::size_t n = 0; n < cells; ++n) {
+        candidate[n] = out.classes.data[n] == static_cast<std::uint8_t>(PixelClass::kUntouched) &&
+                               known(n) && !(std::abs(elevation.data[n] - median.data[n]) <= tol)
+                           ? 1
+                           : 0;
+    }
+    for (int i = 0; i < rows; ++i) {
+        for (int j = 0; j < cols; ++j) {
+            const std::size_t n = index(i, j);
+            bool object = false;
+            if (candidate[n] != 0) {
+                const float h = elevation.data[n];
+                bool peak = true;
+                int same = 0;
+                for (int r = std::max(0, i - k); r <= std::min(rows - 1, i + k); ++r) {
+                    for (int s = std::max(0, j - k); s <= std::min(cols - 1, j + k); ++s) {
+                        const std::size_t o = index(r, s);
+                        if (known(o) && std::abs(elevation.data[o] - h) <= edge_tol) {
+                            ++same;
+                        }
+                        if (o != n && candidate[o] != 0 &&
+                            (certainty.data[o] > certainty.data[n] ||
+                             (certainty.data[o] == certainty.data[n] && o < n))) {
+                            peak = false;
+                        }
+                    }
+                }
+                object = peak || same >= cas.edge_min;
+            }
+            out.elevation.data[n] = object ? elevation.data[n] : median.data[n];
+        }
+    }
+    return out;
+}
+
+}  // namespace casmap::mapper

@@ -1,0 +1,173 @@
+// cas_edge on closed-form synthetic maps: a pole with a trail and a halo beside it (pole kept bit
+// for bit, trail and halo gone), a dense trail the plain median lets vote (gone), a box whose
+// corner the median rounds (kept as measured), a flat floor (unchanged / the median's),
+// bit-determinism, and parameter validation naming the field.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+
+#include "casmap/core/input_error.hpp"
+#include "casmap/mapper/filters.hpp"
+
+namespace casmap::mapper {
+namespace {
+
+// Deterministic +-2 mm "noise" from a counter hash.
+float Noise(int i, int j) {
+    std::uint32_t x = static_cast<std::uint32_t>(i * 7919 + j * 104729 + 17);
+    x ^= x >> 13;
+    x *= 0x5bd1e995U;
+    x ^= x >> 15;
+    return (static_cast<float>(x % 1001) / 1000.0F - 0.5F) * 0.004F;
+}
+
+struct Maps {
+    core::MapF h = core::MapF(40, 40, 0.0F);
+    core::MapF c = core::MapF(40, 40, 36.0F);
+};
+
+Maps NoisyFloor() {
+    Maps p;
+    for (int i = 0; i < 40; ++i) {
+        for (int j = 0; j < 40; ++j) {
+            p.h.at(i, j) = Noise(i, j);
+        }
+    }
+    return p;
+}
+
+// A one-cell pole at (15, 20) seen 80 times, two halo cells holding its top (seen 40 and 30
+// times), and a five-cell trail of one-hit cells falling from the pole's height to the floor.
+Maps PoleWithTrailAndHalo() {
+    Maps p = NoisyFloor();
+    p.h.at(15, 20) = 0.914F;
+    p.c.at(15, 20) = 240.0F;
+    p.h.at(15, 21) = 0.91F;
+    p.c.at(15, 21) = 120.0F;
+    p.h.at(14, 20) = 0.905F;
+    p.c.at(14, 20) = 90.0F;
+    const float trail[] = {0.72F, 0.55F, 0.41F, 0.3F, 0.17F};
+    for (int n = 0; n < 5; ++n) {
+        p.h.at(16 + n, 20) = trail[n];
+        p.c.at(16 + n, 20) = 3.0F;
+    }
+    return p;
+}
+
+bool SameBits(const core::MapF& a, const core::MapF& b) {
+    return a.data.size() == b.data.size() &&
+           std::memcmp(a.data.data(), b.data.data(), 4 * a.data.size()) == 0;
+}
+
+TEST(CasEdge, RemovesTrailAndHaloKeepsThePole) {
+    const Maps p = PoleWithTrailAndHalo();
+    const FilterParams params;
+    const FilterResult out = RunFilter(FilterMethod::kCasEdge, p.h, p.c, params);
+    EXPECT_EQ(out.elevation.at(15, 20), 0.914F);  // the pole, bit for bit
+    EXPECT_LT(MedianFilter(p.h, params.baseline).at(15, 20), 0.05F);  // the median deletes it
+    EXPECT_LT(out.elevation.at(15, 21), 0.05F);                        // the halo is gone
+    EXPECT_LT(out.elevation.at(14, 20), 0.05F);
+    for (int n = 0; n < 5; ++n) {
+        EXPECT_LT(out.elevation.at(16 + n, 20), 0.05F) << n;  // the trail is gone
+    }
+    const FilterResult trail = RunFilter(FilterMethod::kCasTrail, p.h, p.c, params);
+    EXPECT_EQ(out.classes.data, trail.classes.data);  // classes are cas_trail's
+}
+
+TEST(CasEdge, ADenseTrailDoesNotVote) {
+    // A 3 x 5 block of one-hit mixed pixels beside a pole, every height 0.053 m from the next
+    // (beyond support_tol_m, so cas_trail removes them all); in the raw map it fills more than
+    // half of the windows around its centre, so the plain median returns a trail height there.
+    Maps p = NoisyFloor();
+    p.h.at(10, 20) = 0.914F;
+    p.c.at(10, 20) = 240.0F;
+    int n = 0;
+    for (int i = 11; i < 16; ++i) {
+        for (int j = 19; j < 22; ++j) {
+            p.h.at(i, j) = 0.1F + 0.053F * static_cast<float>((n * 7) % 15);
+            p.c.at(i, j) = 3.0F;
+            ++n;
+        }
+    }
+    const FilterParams params;
+    const core::MapF median = MedianFilter(p.h, params.baseline);
+    const FilterResult out = RunFilter(FilterMethod::kCasEdge, p.h, p.c, params);
+    EXPECT_GT(median.at(13, 20), 0.1F);  // the plain median keeps a trail height
+    for (int i = 11; i < 16; ++i) {
+        for (int j = 19; j < 22; ++j) {
+            EXPECT_LT(out.elevation.at(i, j), 0.01F) << i << "," << j;
+        }
+    }
+    EXPECT_EQ(out.elevation.at(10, 20), 0.914F);
+}
+
+TEST(CasEdge, KeepsABoxCornerTheMedianRounds) {
+    Maps p = NoisyFloor();
+    for (int i = 20; i < 30; ++i) {
+        for (int j = 10; j < 20; ++j) {
+            p.h.at(i, j) = 0.3F + Noise(j, i);
+        }
+    }
+    const FilterParams params;
+    const FilterResult out = RunFilter(FilterMethod::kCasEdge, p.h, p.c, params);
+    const FilterResult cm = RunFilter(FilterMethod::kCasMedian, p.h, p.c, params);
+    const core::MapF median = MedianFilter(p.h, params.baseline);
+    // Each corner has 9 box cells in its 5 x 5 window: the median returns the floor there.
+    for (const auto& [i, j] : {std::pair{20, 10}, {20, 19}, {29, 10}, {29, 19}}) {
+        EXPECT_LT(median.at(i, j), 0.05F);
+        EXPECT_EQ(out.elevation.at(i, j), p.h.at(i, j)) << i << "," << j;  // kept as measured
+    }
+    EXPECT_LT(cm.elevation.at(20, 19), 0.05F);  // cas_median keeps one corner per window only
+    // Inside the box and on the floor the output is the median's.
+    EXPECT_EQ(out.elevation.at(25, 15), median.at(25, 15));
+    EXPECT_EQ(out.elevation.at(5, 5), median.at(5, 5));
+}
+
+TEST(CasEdge, LeavesAFlatFloorAsTheMedianAndIsBitDeterministic) {
+    Maps flat;  // exactly 0 m, all observed
+    const FilterParams params;
+    const FilterResult zero = RunFilter(FilterMethod::kCasEdge, flat.h, flat.c, params);
+    EXPECT_TRUE(SameBits(zero.elevation, flat.h));
+    Maps p = NoisyFloor();
+    for (int i = 0; i < 40; ++i) {
+        for (int j = 0; j < 40; ++j) {
+            p.c.at(i, j) = static_cast<float>(3 * (1 + (i + j) % 5));
+        }
+    }
+    const FilterResult a = RunFilter(FilterMethod::kCasEdge, p.h, p.c, params);
+    const FilterResult b = RunFilter(FilterMethod::kCasEdge, p.h, p.c, params);
+    EXPECT_TRUE(SameBits(a.elevation, MedianFilter(p.h, params.baseline)));
+    EXPECT_TRUE(SameBits(a.elevation, b.elevation));
+    EXPECT_EQ(a.classes.data, b.classes.data);
+}
+
+TEST(CasEdge, RejectsBadParametersNamingTheField) {
+    FilterParams params;
+    for (const auto& [name, value] :
+         {std::pair{"edge_min", "0"}, {"edge_min", "226"}, {"edge_min", "2.5"},
+          {"edge_tol_m", "0"}, {"edge_tol_m", "-0.1"}, {"edge_tol_m", "nan"}}) {
+        try {
+            params.Set(name, value);
+            ADD_FAILURE() << name << "=" << value << " accepted";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+        }
+    }
+    params.cas.edge_min = 0;  // set directly: Validate (run by every filter) names it
+    const Maps p = NoisyFloor();
+    try {
+        (void)RunFilter(FilterMethod::kCasEdge, p.h, p.c, params);
+        ADD_FAILURE() << "edge_min 0 accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("edge_min"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW((void)RunFilter(FilterMethod::kCasEdge, p.h, core::MapF(3, 3), FilterParams{}),
+                 InputError);
+    EXPECT_EQ(ParseFilterMethod("cas_edge"), FilterMethod::kCasEdge);
+    EXPECT_EQ(ToString(FilterMethod::kCasEdge), "cas_edge");
+}
+
+}  // namespace
+}  // namespace casmap::mapper
