@@ -269,8 +269,8 @@ const std::vector<FilterMethod>& AllFilterMethods() {
 
 const std::vector<FilterMethod>& AllFilterMethodsWithVariants() {
     static const std::vector<FilterMethod> all = {
-        FilterMethod::kCas,      FilterMethod::kWiener,   FilterMethod::kAverage,
-        FilterMethod::kMedian,   FilterMethod::kCwm,      FilterMethod::kCasTerrain,
+        FilterMethod::kCas,      FilterMethod::kWiener,    FilterMethod::kAverage,
+        FilterMethod::kMedian,   FilterMethod::kCwm,       FilterMethod::kCasTerrain,
         FilterMethod::kCasTrail, FilterMethod::kCasMedian, FilterMethod::kCasEdge};
     return all;
 }

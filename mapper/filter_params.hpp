@@ -29,8 +29,8 @@ enum class FilterMethod {
     kCasEdge
 };
 
-/// "cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median|cas_edge" -> method; throws InputError
-/// naming `field`.
+/// "cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median|cas_edge" -> method; throws
+/// InputError naming `field`.
 [[nodiscard]] FilterMethod ParseFilterMethod(std::string_view name,
                                              const std::string& field = "method");
 [[nodiscard]] std::string_view ToString(FilterMethod method);

@@ -1,5 +1,5 @@
-// casmap filter --method cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median|cas_edge --elevation
-// H.tiff
+// casmap filter --method cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median|cas_edge
+// --elevation H.tiff
 // [--certainty C.tiff]
 //               [--preset NAME] [--set NAME=VALUE]... --out OUT.tiff [--threads N]
 // Filters an elevation map (32-bit float TIFF, metres) with one of the paper's five filters and

@@ -65,9 +65,9 @@ TEST(CasEdge, RemovesTrailAndHaloKeepsThePole) {
     const Maps p = PoleWithTrailAndHalo();
     const FilterParams params;
     const FilterResult out = RunFilter(FilterMethod::kCasEdge, p.h, p.c, params);
-    EXPECT_EQ(out.elevation.at(15, 20), 0.914F);  // the pole, bit for bit
+    EXPECT_EQ(out.elevation.at(15, 20), 0.914F);                      // the pole, bit for bit
     EXPECT_LT(MedianFilter(p.h, params.baseline).at(15, 20), 0.05F);  // the median deletes it
-    EXPECT_LT(out.elevation.at(15, 21), 0.05F);                        // the halo is gone
+    EXPECT_LT(out.elevation.at(15, 21), 0.05F);                       // the halo is gone
     EXPECT_LT(out.elevation.at(14, 20), 0.05F);
     for (int n = 0; n < 5; ++n) {
         EXPECT_LT(out.elevation.at(16 + n, 20), 0.05F) << n;  // the trail is gone
@@ -145,9 +145,12 @@ TEST(CasEdge, LeavesAFlatFloorAsTheMedianAndIsBitDeterministic) {
 
 TEST(CasEdge, RejectsBadParametersNamingTheField) {
     FilterParams params;
-    for (const auto& [name, value] :
-         {std::pair{"edge_min", "0"}, {"edge_min", "226"}, {"edge_min", "2.5"},
-          {"edge_tol_m", "0"}, {"edge_tol_m", "-0.1"}, {"edge_tol_m", "nan"}}) {
+    for (const auto& [name, value] : {std::pair{"edge_min", "0"},
+                                      {"edge_min", "226"},
+                                      {"edge_min", "2.5"},
+                                      {"edge_tol_m", "0"},
+                                      {"edge_tol_m", "-0.1"},
+                                      {"edge_tol_m", "nan"}}) {
         try {
             params.Set(name, value);
             ADD_FAILURE() << name << "=" << value << " accepted";
