@@ -43,6 +43,8 @@ TEST(FilterParams, SetsEveryNamedParameter) {
     p.Set("center_weight", "5");
     p.Set("window", "7");
     p.Set("speed_m_s", "0.5");
+    p.Set("edge_min", "9");
+    p.Set("edge_tol_m", "0.04");
     EXPECT_EQ(p.cas.A, 9.0);
     EXPECT_EQ(p.cas.G, 80.0);
     EXPECT_EQ(p.cas.gs_mode, GsMode::kVariance);
@@ -56,8 +58,10 @@ TEST(FilterParams, SetsEveryNamedParameter) {
     EXPECT_EQ(p.baseline.center_weight, 5);
     EXPECT_EQ(p.baseline.window, 7);
     EXPECT_EQ(p.cas.speed_m_s, 0.5);
+    EXPECT_EQ(p.cas.edge_min, 9);
+    EXPECT_EQ(p.cas.edge_tol_m, 0.04);
     EXPECT_NO_THROW(p.Validate());
-    EXPECT_EQ(FilterParams::Names().size(), 38U);  // 24 filter + 14 mapping-stage names
+    EXPECT_EQ(FilterParams::Names().size(), 40U);  // 26 filter + 14 mapping-stage names
 }
 
 TEST(FilterParams, SetsTheWaveTwoOptions) {
