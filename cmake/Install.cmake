@@ -13,6 +13,9 @@ install(EXPORT casmapTargets NAMESPACE casmap:: DESTINATION ${CASMAP_INSTALL_CMA
 # Embree, assimp and Bullet only then.
 set(CASMAP_PACKAGE_WITH_SIM ${CASMAP_BUILD_SIM})
 set(CASMAP_HDF5_LINK_LIBRARIES ${HDF5_C_LIBRARIES})
+if(CASMAP_LIBDEFLATE_INCLUDE_DIR AND CASMAP_LIBDEFLATE_LIBRARY)
+    list(APPEND CASMAP_HDF5_LINK_LIBRARIES ${CASMAP_LIBDEFLATE_LIBRARY})
+endif()
 # casmap::view (static) links cpp-httplib and nlohmann_json privately: the config file finds
 # them when the view is in the package.
 if(TARGET casmap_view)

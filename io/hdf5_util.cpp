@@ -1,9 +1,14 @@
 #include "casmap/io/hdf5_util.hpp"
 
+#if defined(CASMAP_HAVE_LIBDEFLATE)
+#include <libdeflate.h>
+#endif
+
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <stdexcept>
 
 #include "casmap/io/hdf5_global_heap.hpp"
@@ -35,6 +40,70 @@ std::string ClassName(H5T_class_t c) {
 // Object creation properties shared by groups and datasets: no access/modification times, so
 // the same content gives the same bytes.
 void NoTimes(hid_t plist) { Check(H5Pset_obj_track_times(plist, false), "H5Pset_obj_track_times"); }
+
+#if defined(CASMAP_HAVE_LIBDEFLATE)
+// Writes a dataset chunked in whole rows (chunk = rows x the other dimensions) chunk by chunk,
+// each passed through what the dataset's filter pipeline does, done here: HDF5's byte shuffle,
+// then a zlib stream (RFC 1950, what HDF5's deflate filter writes and reads) from libdeflate at
+// level 1, about twice as fast as zlib's. Every HDF5 reader decodes it like its own chunks.
+// The partial last chunk is padded with zeros (readers ignore what lies outside the dataset).
+// False when the memory type differs from the file type (then the caller lets HDF5 write).
+bool WriteChunksDeflated(hid_t dataset,
+                         hid_t file_type,
+                         hid_t memory_type,
+                         const std::vector<hsize_t>& dims,
+                         const std::vector<hsize_t>& chunk,
+                         const void* data) {
+    if (H5Tequal(file_type, memory_type) <= 0) {
+        return false;
+    }
+    const std::size_t element = H5Tget_size(file_type);
+    std::size_t row_elements = 1;
+    for (std::size_t k = 1; k < dims.size(); ++k) {
+        row_elements *= static_cast<std::size_t>(dims[k]);
+    }
+    const auto chunk_rows = static_cast<std::size_t>(chunk[0]);
+    const std::size_t chunk_elements = chunk_rows * row_elements;
+    const std::size_t chunk_bytes = chunk_elements * element;
+    const std::unique_ptr<libdeflate_compressor, decltype(&libdeflate_free_compressor)> compressor(
+        libdeflate_alloc_compressor(1), &libdeflate_free_compressor);
+    if (!compressor) {
+        throw std::runtime_error("libdeflate: cannot allocate a compressor");
+    }
+    std::vector<unsigned char> plain(chunk_bytes);
+    std::vector<unsigned char> shuffled(chunk_bytes);
+    std::vector<unsigned char> packed(
+        libdeflate_zlib_compress_bound(compressor.get(), chunk_bytes));
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    const auto rows = static_cast<std::size_t>(dims[0]);
+    std::vector<hsize_t> offset(dims.size(), 0);
+    for (std::size_t row = 0; row < rows; row += chunk_rows) {
+        const std::size_t used = std::min(chunk_rows, rows - row) * row_elements * element;
+        std::memcpy(plain.data(), bytes + row * row_elements * element, used);
+        std::fill(plain.begin() + static_cast<std::ptrdiff_t>(used), plain.end(), 0);
+        const unsigned char* in = plain.data();
+        if (element > 1) {  // H5Z shuffle: byte b of element i goes to b * count + i
+            for (std::size_t b = 0; b < element; ++b) {
+                unsigned char* out = shuffled.data() + b * chunk_elements;
+                const unsigned char* src = plain.data() + b;
+                for (std::size_t i = 0; i < chunk_elements; ++i) {
+                    out[i] = src[i * element];
+                }
+            }
+            in = shuffled.data();
+        }
+        const std::size_t size = libdeflate_zlib_compress(compressor.get(), in, chunk_bytes,
+                                                          packed.data(), packed.size());
+        if (size == 0) {
+            throw std::runtime_error("libdeflate: compression failed");
+        }
+        offset[0] = row;
+        Check(H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, offset.data(), size, packed.data()),
+              "H5Dwrite_chunk");
+    }
+    return true;
+}
+#endif
 
 Id ScalarSpace() { return Check(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate"); }
 
@@ -145,8 +214,9 @@ void WriteDataset(hid_t parent,
     }
     // Chunk whole rows, about 256 KiB per chunk; small datasets stay contiguous.
     const std::size_t element = H5Tget_size(file_type);
+    std::vector<hsize_t> chunk;  // empty: contiguous
     if (count >= 1024 && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
-        std::vector<hsize_t> chunk = dims;
+        chunk = dims;
         const hsize_t row_bytes = (dims.size() > 1 ? dims[1] : 1) * element;
         chunk[0] = std::clamp<hsize_t>(262144 / std::max<hsize_t>(row_bytes, 1), 1, dims[0]);
         Check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()),
@@ -158,6 +228,12 @@ void WriteDataset(hid_t parent,
                                         dcpl.get(), H5P_DEFAULT),
                              H5Dclose, "H5Dcreate2 " + name);
     if (count > 0) {
+#if defined(CASMAP_HAVE_LIBDEFLATE)
+        if (!chunk.empty() &&
+            WriteChunksDeflated(dataset.get(), file_type, memory_type, dims, chunk, data)) {
+            return;
+        }
+#endif
         Check(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
               "H5Dwrite " + name);
     }

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
     build-essential cmake ninja-build pkg-config git
     libeigen3-dev libembree-dev libbullet-dev libassimp-dev
-    libopencv-dev libyaml-cpp-dev libcli11-dev libhdf5-dev
+    libopencv-dev libyaml-cpp-dev libcli11-dev libhdf5-dev libdeflate-dev
     libgtest-dev libgmock-dev libbenchmark-dev libtiff-dev
     clang libclang-rt-14-dev clang-format xxd
     python3 python3-dev python3-numpy python3-scipy python3-h5py python3-opencv python3-pytest
