@@ -13,15 +13,19 @@
 //      of its window within edge_tol_m of its own height is a surface, not a mixed pixel: kept;
 //   3. a pole's halo (its top smeared onto 2-8 neighbouring cells) has fewer same-height
 //      neighbours than a surface; among such unsupported candidates only the certainty peak of
-//      each window (cas_median's rule) is the object.
+//      each window (cas_median's rule) marks an object, and the object's cell is the one that
+//      holds the certainty-weighted centroid of the peak's same-height 3 x 3 block.
 // So, with T = cas_trail's output and M = median(T):
 //   candidate  a known (c > 0) cell cas_trail left untouched with |h - M| > support_tol_m;
-//   object     a candidate with >= edge_min known window cells (itself included) within
-//              edge_tol_m of h, or the candidate of highest certainty among the candidates of
-//              its (2k+1)^2 window (ties: first in row-major order);
-//   out = h    on objects, M everywhere else.
-// Every value comes from the unfiltered map, cas_trail's output or the median; no floating-point
-// reduction, so the output is the same bit for bit at any thread count.
+//   surface    a candidate with >= edge_min known window cells (itself included) within
+//              edge_tol_m of h: out = h;
+//   peak       any other candidate of highest certainty among the candidates of its (2k+1)^2
+//              window (ties: first in row-major order): out = h at the cell of the
+//              certainty-weighted centroid of the known cells of its 3 x 3 within edge_tol_m
+//              of its height (that cell's own h; the peak's h if that cell is not in the set);
+//   out = M    everywhere else.
+// Every value comes from the unfiltered map, cas_trail's output or the median; the centroid is
+// summed in a fixed order, so the output is the same bit for bit at any thread count.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -59,13 +63,16 @@ FilterResult CasEdgeFilter(const core::MapF& elevation,
                            ? 1
                            : 0;
     }
+    // Pass 1: surfaces keep their height, everything else takes M; peaks are collected.
+    std::vector<std::size_t> peaks;
     for (int i = 0; i < rows; ++i) {
         for (int j = 0; j < cols; ++j) {
             const std::size_t n = index(i, j);
-            bool object = false;
+            bool surface = false;
+            bool peak = false;
             if (candidate[n] != 0) {
                 const float h = elevation.data[n];
-                bool peak = true;
+                peak = true;
                 int same = 0;
                 for (int r = std::max(0, i - k); r <= std::min(rows - 1, i + k); ++r) {
                     for (int s = std::max(0, j - k); s <= std::min(cols - 1, j + k); ++s) {
@@ -80,10 +87,43 @@ FilterResult CasEdgeFilter(const core::MapF& elevation,
                         }
                     }
                 }
-                object = peak || same >= cas.edge_min;
+                surface = same >= cas.edge_min;
             }
-            out.elevation.data[n] = object ? elevation.data[n] : median.data[n];
+            out.elevation.data[n] = surface ? elevation.data[n] : median.data[n];
+            if (peak && !surface) {
+                peaks.push_back(n);
+            }
         }
+    }
+    // Pass 2: a peak stands for a small object (a pole) whose top the beam footprint and the
+    // pose error smear over a block of cells; the object's cell is the one holding the
+    // certainty-weighted centroid of the known cells of the peak's 3 x 3 within edge_tol_m of
+    // the peak's height (the peak itself is the truth cell in 641 of 728 training poles, the
+    // centroid's cell in 678). That cell keeps its own measured height.
+    for (const std::size_t n : peaks) {
+        const int i = static_cast<int>(n / static_cast<std::size_t>(cols));
+        const int j = static_cast<int>(n % static_cast<std::size_t>(cols));
+        const float h = elevation.data[n];
+        double w = 0.0;
+        double wi = 0.0;
+        double wj = 0.0;
+        for (int r = std::max(0, i - 1); r <= std::min(rows - 1, i + 1); ++r) {
+            for (int s = std::max(0, j - 1); s <= std::min(cols - 1, j + 1); ++s) {
+                const std::size_t o = index(r, s);
+                if (known(o) && std::abs(elevation.data[o] - h) <= edge_tol) {
+                    const double c = certainty.data[o];
+                    w += c;
+                    wi += c * r;
+                    wj += c * s;
+                }
+            }
+        }
+        // w >= c(peak) > 0: the peak is in its own set.
+        const int ci = static_cast<int>(std::floor(wi / w + 0.5));
+        const int cj = static_cast<int>(std::floor(wj / w + 0.5));
+        const std::size_t o = index(ci, cj);
+        out.elevation.data[o] =
+            known(o) && std::abs(elevation.data[o] - h) <= edge_tol ? elevation.data[o] : h;
     }
     return out;
 }
