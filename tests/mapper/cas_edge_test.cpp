@@ -76,6 +76,31 @@ TEST(CasEdge, RemovesTrailAndHaloKeepsThePole) {
     EXPECT_EQ(out.classes.data, trail.classes.data);  // classes are cas_trail's
 }
 
+TEST(CasEdge, KeepsAPoleAtTheCentroidOfItsTopBlock) {
+    // The pole's top smeared over four cells: the most-seen cell (15, 20) is at the block's
+    // edge; the certainty-weighted centroid (row 15, column 19.29) is in cell (15, 19).
+    Maps p = NoisyFloor();
+    const struct {
+        int i, j;
+        float h, c;
+    } block[] = {{15, 20, 0.914F, 100.0F},
+                 {15, 19, 0.912F, 90.0F},
+                 {14, 19, 0.91F, 80.0F},
+                 {16, 19, 0.911F, 80.0F}};
+    for (const auto& b : block) {
+        p.h.at(b.i, b.j) = b.h;
+        p.c.at(b.i, b.j) = b.c;
+    }
+    const FilterParams params;
+    const FilterResult out = RunFilter(FilterMethod::kCasEdge, p.h, p.c, params);
+    EXPECT_EQ(out.elevation.at(15, 19), 0.912F);  // the centroid's cell, its own height
+    for (const auto& b : block) {
+        if (b.j == 20 || b.i != 15) {
+            EXPECT_LT(out.elevation.at(b.i, b.j), 0.05F) << b.i << "," << b.j;
+        }
+    }
+}
+
 TEST(CasEdge, ADenseTrailDoesNotVote) {
     // A 3 x 5 block of one-hit mixed pixels beside a pole, every height 0.053 m from the next
     // (beyond support_tol_m, so cas_trail removes them all); in the raw map it fills more than
