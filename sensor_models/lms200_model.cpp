@@ -23,6 +23,8 @@ constexpr std::uint32_t kStreamReturn = 2;
 // Detection probability above which the logistic need not be evaluated (an exact shortcut).
 constexpr double kSureProbability = 0.999;
 constexpr std::uint64_t kBiasTag = 0x6d6174657269616cULL;  // "material"
+// Material biases of the first surface ids, drawn once per model (the same values).
+constexpr std::size_t kBiasTableSize = 256;
 
 double DegToRad(double deg) { return deg * std::numbers::pi / 180.0; }
 
@@ -131,6 +133,60 @@ double OuterBound(const Waveform& w, double from, double dir, double c) {
     return Crossing(w, std::min(inner, outer), std::max(inner, outer), c);
 }
 
+// The waveform's slope (up to 1 / sigma^2, like Waveform::Slope) on the grid x_k = x0 + k h,
+// k = 1, 2, ..., one step per Next(): each hit's Gaussian advances by two products,
+// exp(-(d + h)^2 c) = exp(-d^2 c) q with q = exp(-(2 d h + h^2) c), q' = q exp(-2 h^2 c),
+// instead of an exp per hit and point. A hit enters with exact exps when it comes within the
+// cutoff (as in Waveform); the products drift by ~k^2 ulp, which moves only the sign of a slope
+// that is ~1e-13 of its terms (an extremum on a grid point; it is refined with exact exps).
+class GridSlope {
+public:
+    GridSlope(std::span<const EchoSample> samples, double sigma, double x0, double h)
+        : samples_(samples),
+          sigma_(sigma),
+          c_(0.5 / (sigma * sigma)),
+          x0_(x0),
+          h_(h),
+          b2_(std::exp(-2.0 * h * h * c_)) {}
+
+    [[nodiscard]] double Next() {
+        ++k_;
+        const double x = x0_ + static_cast<double>(k_) * h_;
+        double g = 0.0;
+        for (std::size_t i = 0; i < samples_.size(); ++i) {
+            const double d = x - samples_[i].range_m;
+            State& st = state_[i];
+            if (std::abs(d) < kCutoffSigmas * sigma_) {
+                if (st.step != k_ - 1) {  // (re-)enters the cutoff window: exact start
+                    st.value = std::exp(-d * d * c_);
+                    st.ratio = std::exp(-(2.0 * d * h_ + h_ * h_) * c_);
+                } else {
+                    st.value *= st.ratio;
+                    st.ratio *= b2_;
+                }
+                st.step = k_;
+                g -= d * samples_[i].energy * st.value;
+            }
+        }
+        return g;
+    }
+
+private:
+    struct State {
+        double value = 0.0;                               // exp(-d^2 c) at the last step
+        double ratio = 0.0;                               // to the next step
+        std::size_t step = static_cast<std::size_t>(-2);  // step it was last advanced at
+    };
+    std::span<const EchoSample> samples_;
+    double sigma_;
+    double c_;
+    double x0_;
+    double h_;
+    double b2_;
+    std::size_t k_ = 0;
+    std::array<State, kMaxSubrays> state_{};
+};
+
 // Lobes of one segment (hits closer than kSegmentGapSigmas apart).
 std::size_t SegmentLobes(std::span<const EchoSample> seg,
                          double sigma,
@@ -152,9 +208,11 @@ std::size_t SegmentLobes(std::span<const EchoSample> seg,
     } else {
         double x_prev = first;
         bool rising_prev = true;  // f' > 0 left of every hit
+        GridSlope grid(seg, sigma, first, h);
+        const bool by_grid = seg.size() <= kMaxSubrays;  // its state holds one pulse's hits
         for (std::size_t k = 1; k <= steps; ++k) {
             const double x = k == steps ? last : first + static_cast<double>(k) * h;
-            const bool rising = k == steps ? false : w.Slope(x) > 0.0;
+            const bool rising = k == steps ? false : (by_grid ? grid.Next() : w.Slope(x)) > 0.0;
             if (rising != rising_prev) {
                 const double e = RefineExtremum(w, x_prev, x);
                 if (rising_prev && n_max < maxima.size()) {
@@ -338,6 +396,12 @@ Lms200Model::Lms200Model(const Lms200Config& config, std::uint64_t seed)
         }
     }
     bias_key_ = SplitMix64(seed_ ^ kBiasTag);
+    bias_table_.resize(kBiasTableSize);
+    for (std::size_t id = 0; id < kBiasTableSize; ++id) {
+        const std::uint64_t h = SplitMix64(bias_key_ ^ id);
+        const double u = static_cast<double>(h >> 11) * 0x1.0p-53;
+        bias_table_[id] = (2.0 * u - 1.0) * config_.MaterialBiasMaxM();
+    }
     // Peak whose detection probability is kSureProbability: logit(q) = db / soft_edge_db.
     sure_peak_ = std::pow(
         10.0, config_.soft_edge_db * std::log(kSureProbability / (1.0 - kSureProbability)) / 10.0);
@@ -440,6 +504,9 @@ void Lms200Model::PulseSubrays(std::uint64_t scan_index,
 }
 
 double Lms200Model::MaterialBiasM(std::uint32_t surface_id) const {
+    if (surface_id < bias_table_.size()) {
+        return bias_table_[surface_id];
+    }
     const std::uint64_t h = SplitMix64(bias_key_ ^ surface_id);
     const double u = static_cast<double>(h >> 11) * 0x1.0p-53;
     return (2.0 * u - 1.0) * config_.MaterialBiasMaxM();

@@ -233,8 +233,9 @@ private:
     double origin_offset_[kMaxSubrays] = {};
     double dir_slope_[kMaxSubrays] = {};
     double dir_scale_[kMaxSubrays] = {};
-    double sure_peak_ = 1.0;      // peak with detection probability kSureProbability
-    std::uint64_t bias_key_ = 0;  // first hash of the material biases, from the seed
+    double sure_peak_ = 1.0;          // peak with detection probability kSureProbability
+    std::uint64_t bias_key_ = 0;      // first hash of the material biases, from the seed
+    std::vector<double> bias_table_;  // MaterialBiasM of the first surface ids
     std::vector<double> beam_cos_;
     std::vector<double> beam_sin_;
 };
