@@ -4,8 +4,10 @@
 // bit-determinism, and parameter validation naming the field.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include "casmap/core/input_error.hpp"
@@ -166,6 +168,30 @@ TEST(CasEdge, LeavesAFlatFloorAsTheMedianAndIsBitDeterministic) {
     EXPECT_TRUE(SameBits(a.elevation, MedianFilter(p.h, params.baseline)));
     EXPECT_TRUE(SameBits(a.elevation, b.elevation));
     EXPECT_EQ(a.classes.data, b.classes.data);
+}
+
+TEST(CasEdge, UnknownAsNaNFillsHolesAndNeverInventsTerrain) {
+    Maps p = PoleWithTrailAndHalo();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    p.h.at(8, 8) = nan;  // one never-observed cell in the floor: CAS's fill branch fills it
+    p.c.at(8, 8) = 0.0F;
+    for (int i = 26; i < 37; ++i) {  // an 11 x 11 never-observed patch
+        for (int j = 26; j < 37; ++j) {
+            p.h.at(i, j) = nan;
+            p.c.at(i, j) = 0.0F;
+        }
+    }
+    FilterParams params;
+    params.Set("unknown", "nan");
+    const FilterResult out = RunFilter(FilterMethod::kCasEdge, p.h, p.c, params);
+    EXPECT_EQ(out.elevation.at(15, 20), 0.914F);         // the pole
+    EXPECT_LT(std::abs(out.elevation.at(8, 8)), 0.01F);  // the hole, from the floor around it
+    EXPECT_TRUE(std::isnan(out.elevation.at(31, 31)));   // no terrain invented inside the patch
+    for (int n = 0; n < 5; ++n) {
+        const float v = out.elevation.at(16 + n, 20);  // the trail: unknown or floor
+        EXPECT_TRUE(std::isnan(v) || v < 0.05F) << n << ": " << v;
+    }
+    EXPECT_LT(out.elevation.at(15, 21), 0.05F);  // the halo takes the floor's median
 }
 
 TEST(CasEdge, RejectsBadParametersNamingTheField) {
