@@ -143,6 +143,10 @@ const std::map<std::string, Setter, std::less<>>& Setters() {
                           auto v) { p.cas.edge_tol_m = ParseRange(n, v, 0, kInf, true); }},
         {"edge_min",
          [](FilterParams& p, auto n, auto v) { p.cas.edge_min = ParseInt(n, v, 1, 225); }},
+        {"surface_tol_m", [](FilterParams& p, auto n,
+                             auto v) { p.cas.surface_tol_m = ParseRange(n, v, 0, kInf, true); }},
+        {"surface_min",
+         [](FilterParams& p, auto n, auto v) { p.cas.surface_min = ParseInt(n, v, 1, 225); }},
         {"window",
          [](FilterParams& p, auto n, auto v) {
              const int w = ParseInt(n, v, 3, 15);
@@ -339,6 +343,10 @@ void FilterParams::Validate() const {
     check(cas.edge_tol_m > 0 && std::isfinite(cas.edge_tol_m), "edge_tol_m", cas.edge_tol_m,
           "allowed: > 0");
     check(cas.edge_min >= 1 && cas.edge_min <= 225, "edge_min", cas.edge_min,
+          "allowed: integer 1..225");
+    check(cas.surface_tol_m > 0 && std::isfinite(cas.surface_tol_m), "surface_tol_m",
+          cas.surface_tol_m, "allowed: > 0");
+    check(cas.surface_min >= 1 && cas.surface_min <= 225, "surface_min", cas.surface_min,
           "allowed: integer 1..225");
     check(baseline.window >= 3 && baseline.window <= 15 && baseline.window % 2 == 1, "window",
           baseline.window, "allowed: odd integer 3..15");

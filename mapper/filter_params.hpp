@@ -77,6 +77,12 @@ struct CasParams {
     int support_min = 5;               // known same-height window cells needed to keep a cell
     int edge_min = 7;                  // cas_edge: known same-height window cells of a surface
     double edge_tol_m = 0.06;          // cas_edge: "same height" of the surface test
+    // cas_median's surface test: a known cell that stands out from the median by more than
+    // support_tol_m but has at least surface_min known window cells (itself included) within
+    // surface_tol_m of its height is on a surface (a box top at its edge or corner): it takes
+    // the median of those cells instead of the plain median.
+    double surface_tol_m = 0.02;
+    int surface_min = 7;
 
     /// Eq. 8: A = a * (round(s / (v dt)) + 2), or the given A.
     [[nodiscard]] double EffectiveA() const;

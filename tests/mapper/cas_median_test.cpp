@@ -108,6 +108,67 @@ TEST(CasMedian, KeepsAWideBoxTopAndIsBitDeterministic) {
         0);
 }
 
+// A flat 0.2 m box top, 10 x 10 cells, on the noisy floor (the pole and its trail stay too):
+// the median rounds its corners to the floor (a corner has 9 top cells of 25); cas_median
+// keeps every box cell at 0.2 m bit for bit (the surface test: 9 >= surface_min same-height
+// known cells), keeps the pole, removes the trail, and leaves the floor as the median has it.
+TEST(CasMedian, KeepsABoxsEdgesAndCornersBitForBit) {
+    Maps p = PoleWithTrailAndHalo();
+    for (int i = 25; i < 35; ++i) {
+        for (int j = 5; j < 15; ++j) {
+            p.h.at(i, j) = 0.2F;
+        }
+    }
+    FilterParams params;
+    params.Set("support_tol_m", "0.09");
+    const core::MapF median = MedianFilter(p.h, params.baseline);
+    EXPECT_LT(median.at(25, 5), 0.01F);  // the median cuts the corner off
+    EXPECT_LT(median.at(34, 14), 0.01F);
+    for (const char* unknown : {"zero", "nan"}) {
+        params.Set("unknown", unknown);
+        const FilterResult out = RunFilter(FilterMethod::kCasMedian, p.h, p.c, params);
+        for (int i = 25; i < 35; ++i) {
+            for (int j = 5; j < 15; ++j) {
+                EXPECT_EQ(out.elevation.at(i, j), 0.2F) << unknown << " " << i << "," << j;
+            }
+        }
+        EXPECT_EQ(out.elevation.at(15, 20), 0.914F) << unknown;  // the pole
+        for (int n = 0; n < 5; ++n) {
+            EXPECT_LT(out.elevation.at(16 + n, 20), 0.05F) << unknown << " trail " << n;
+        }
+        // Off the box's outline and the pole, every cell is the median's (floor cells next to
+        // the box do not stand out from the median).
+        const core::MapF m = MedianFilter(p.h, params.baseline);
+        for (int i = 0; i < 40; ++i) {
+            for (int j = 0; j < 40; ++j) {
+                const bool box = i >= 25 && i < 35 && j >= 5 && j < 15;
+                if (!box && !(i == 15 && j == 20)) {
+                    EXPECT_EQ(out.elevation.at(i, j), m.at(i, j))
+                        << unknown << " " << i << "," << j;
+                }
+            }
+        }
+    }
+}
+
+// A box edge needs surface_min same-height cells: with surface_min above what a corner has
+// (9 in a 5 x 5 window) the corner falls back to the median (the first version's behaviour).
+TEST(CasMedian, SurfaceMinDecidesTheCorner) {
+    Maps p = PoleWithTrailAndHalo();
+    for (int i = 25; i < 35; ++i) {
+        for (int j = 5; j < 15; ++j) {
+            p.h.at(i, j) = 0.2F;
+        }
+    }
+    FilterParams params;
+    params.Set("support_tol_m", "0.09");
+    params.Set("surface_min", "10");
+    const FilterResult out = RunFilter(FilterMethod::kCasMedian, p.h, p.c, params);
+    const core::MapF median = MedianFilter(p.h, params.baseline);
+    EXPECT_EQ(out.elevation.at(34, 14), median.at(34, 14));  // 9 < 10: the median's corner
+    EXPECT_EQ(out.elevation.at(34, 10), 0.2F);               // an edge cell has 15
+}
+
 TEST(CasMedian, NeedsTheCertaintyMap) {
     const Maps p = PoleWithTrailAndHalo();
     EXPECT_THROW((void)RunFilter(FilterMethod::kCasMedian, p.h, core::MapF(3, 3), FilterParams{}),

@@ -61,7 +61,7 @@ TEST(FilterParams, SetsEveryNamedParameter) {
     EXPECT_EQ(p.cas.edge_min, 9);
     EXPECT_EQ(p.cas.edge_tol_m, 0.04);
     EXPECT_NO_THROW(p.Validate());
-    EXPECT_EQ(FilterParams::Names().size(), 40U);  // 26 filter + 14 mapping-stage names
+    EXPECT_EQ(FilterParams::Names().size(), 42U);  // 28 filter + 14 mapping-stage names
 }
 
 TEST(FilterParams, SetsTheWaveTwoOptions) {
@@ -73,6 +73,8 @@ TEST(FilterParams, SetsTheWaveTwoOptions) {
     p.Set("support", "height");
     p.Set("support_tol_m", "0.04");
     p.Set("support_min", "3");
+    p.Set("surface_tol_m", "0.03");
+    p.Set("surface_min", "9");
     EXPECT_EQ(p.cas.unknown, Unknown::kNaN);
     EXPECT_EQ(p.baseline.unknown, Unknown::kNaN);
     EXPECT_EQ(p.cas.ground, Ground::kLocal);
@@ -81,9 +83,12 @@ TEST(FilterParams, SetsTheWaveTwoOptions) {
     EXPECT_EQ(p.cas.support, Support::kHeight);
     EXPECT_EQ(p.cas.support_tol_m, 0.04);
     EXPECT_EQ(p.cas.support_min, 3);
+    EXPECT_EQ(p.cas.surface_tol_m, 0.03);
+    EXPECT_EQ(p.cas.surface_min, 9);
     EXPECT_NO_THROW(p.Validate());
     for (const char* bad : {"unknown=none", "ground=flat", "ground_k=0", "ground_quantile=1.5",
-                            "support=yes", "support_tol_m=0", "support_min=0"}) {
+                            "support=yes", "support_tol_m=0", "support_min=0", "surface_tol_m=0",
+                            "surface_min=0", "surface_min=226"}) {
         const std::string e = SetError(bad);
         const std::string name = std::string(bad).substr(0, std::string(bad).find('='));
         EXPECT_NE(e.find(name), std::string::npos) << bad << ": " << e;
