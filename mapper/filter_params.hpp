@@ -81,7 +81,7 @@ struct CasParams {
     // support_tol_m but has at least surface_min known window cells (itself included) within
     // surface_tol_m of its height is on a surface (a box top at its edge or corner): it takes
     // the median of those cells instead of the plain median.
-    double surface_tol_m = 0.02;
+    double surface_tol_m = 0.015;
     int surface_min = 7;
 
     /// Eq. 8: A = a * (round(s / (v dt)) + 2), or the given A.
