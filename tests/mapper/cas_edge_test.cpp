@@ -146,7 +146,9 @@ TEST(CasEdge, KeepsABoxCornerTheMedianRounds) {
         EXPECT_LT(median.at(i, j), 0.05F);
         EXPECT_EQ(out.elevation.at(i, j), p.h.at(i, j)) << i << "," << j;  // kept as measured
     }
-    EXPECT_LT(cm.elevation.at(20, 19), 0.05F);  // cas_median keeps one corner per window only
+    // cas_median's surface rule keeps the corner too, at the lower median of its same-height
+    // known cells (not bit for bit: the box is noisy).
+    EXPECT_NEAR(cm.elevation.at(20, 19), 0.3F, 0.01F);
     // Inside the box and on the floor the output is the median's.
     EXPECT_EQ(out.elevation.at(25, 15), median.at(25, 15));
     EXPECT_EQ(out.elevation.at(5, 5), median.at(5, 5));
