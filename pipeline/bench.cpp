@@ -346,4 +346,14 @@ std::string WriteBenchOutputs(const fs::path& dir, const BenchResult& result) {
     return json;
 }
 
+void CheckBenchOutputFolder(const std::filesystem::path& dir) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(dir, ec) && !std::filesystem::is_empty(dir, ec) &&
+        !std::filesystem::exists(dir / "bench.json", ec)) {
+        throw MakeInputError(dir.string(), "out", "",
+                             "holds files but no bench.json: not replacing a folder that is not "
+                             "a bench output; choose a new or empty folder");
+    }
+}
+
 }  // namespace casmap::pipeline

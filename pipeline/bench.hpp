@@ -88,6 +88,10 @@ struct BenchResult {
 /// written.
 std::string WriteBenchOutputs(const std::filesystem::path& dir, const BenchResult& result);
 
+/// A bench output folder replaces `dir` only if `dir` is missing, empty or a bench output (holds
+/// bench.json): InputError "<dir>: out (holds files but no bench.json: ...)" otherwise.
+void CheckBenchOutputFolder(const std::filesystem::path& dir);
+
 /// The `filters:` section of a run's effective configuration (every CAS and baseline value).
 [[nodiscard]] std::string FilterParamsYaml(const mapper::FilterParams& params);
 

@@ -247,13 +247,4 @@ BenchSettings ResolveBenchSettings(const std::string& courses_dir,
     return settings;
 }
 
-void CheckWritableFile(const std::string& path, const std::string& field) {
-    const std::filesystem::path p(path);
-    const std::filesystem::path dir =
-        p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
-    if (p.filename().empty() || !std::filesystem::is_directory(dir)) {
-        throw MakeInputError(path, field, path, "directory " + dir.string() + " does not exist");
-    }
-}
-
 }  // namespace casmap::pipeline

@@ -60,8 +60,6 @@ struct BenchSettings {
                                                  const std::string& rig_path,
                                                  const std::string& sensor_path,
                                                  std::uint64_t seed);
-/// Throws InputError naming `field` unless `path` names a file in an existing directory.
-void CheckWritableFile(const std::string& path, const std::string& field);
 
 /// The setup of one run (rig, sensor, grid) for a course and test.
 [[nodiscard]] SimSetup BenchSetup(const BenchSettings& settings,

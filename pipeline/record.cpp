@@ -13,8 +13,10 @@
 #include <thread>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/drivers/partial_scans.hpp"
 #include "casmap/drivers/pose_file.hpp"
+#include "casmap/io/output_set.hpp"
 #include "casmap/io/run_file.hpp"
 #include "casmap/io/yaml_emit.hpp"
 
@@ -49,38 +51,17 @@ drivers::Variant ParseVariant(const std::string& text) {
     throw MakeInputError("", "variant", text, rule);
 }
 
-namespace fs_check {
-/// The folder of `path` must exist and take a new file (checked by creating one).
-void CheckWritableFolder(const std::string& path, const std::string& field) {
-    const fs::path p(path);
-    const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-    if (p.filename().empty() || !fs::is_directory(dir)) {
-        throw MakeInputError(path, field, path, "folder " + dir.string() + " does not exist");
-    }
-    if (fs::is_directory(p)) {
-        throw MakeInputError(path, field, path, "is a folder, not a file name");
-    }
-    const fs::path probe = dir / (".casmap_probe_" + std::to_string(getpid()));
-    FILE* f = std::fopen(probe.c_str(), "w");
-    if (f == nullptr) {
-        throw MakeInputError(path, field, path, "folder " + dir.string() + " is not writable");
-    }
-    std::fclose(f);
-    fs::remove(probe);
-}
-}  // namespace fs_check
-
 /// Everything checked before the scanner is touched (issue #13 item 2).
 }  // namespace
 
 void CheckRecordOptions(const RecordOptions& opt) {
-    fs_check::CheckWritableFolder(opt.out, "out");
+    io::CheckOutputPath(opt.out, "out");
     if (!(opt.timeout_s > 0.0) || !std::isfinite(opt.timeout_s)) {
-        throw MakeInputError("", "timeout_s", std::to_string(opt.timeout_s),
+        throw MakeInputError("", "timeout_s", core::FormatNumber(opt.timeout_s),
                              "a finite number of seconds > 0");
     }
     if (!(opt.duration_s >= 0.0) || !std::isfinite(opt.duration_s)) {
-        throw MakeInputError("", "duration_s", std::to_string(opt.duration_s),
+        throw MakeInputError("", "duration_s", core::FormatNumber(opt.duration_s),
                              "a finite number of seconds >= 0");
     }
     if (!opt.poses.empty()) {
@@ -133,12 +114,10 @@ int ConnectWithRetry(drivers::Lms200Driver& driver,
                 if (!Transient(opt.device, e)) {
                     throw;
                 }
-                char seconds[32];
-                std::snprintf(seconds, sizeof(seconds), "%g", opt.timeout_s);
-                throw MakeInputError(opt.device, "device", opt.device,
-                                     std::string("no LMS 200 ready within timeout_s ") + seconds +
-                                         " s (" + std::to_string(attempt) +
-                                         " attempts; last: " + e.what() + ")");
+                throw MakeInputError(
+                    opt.device, "device", opt.device,
+                    "no LMS 200 ready within timeout_s " + core::FormatNumber(opt.timeout_s) +
+                        " s (" + std::to_string(attempt) + " attempts; last: " + e.what() + ")");
             }
             std::this_thread::sleep_for(std::chrono::duration<double>(backoff_s));
             backoff_s = std::min(1.0, 2.0 * backoff_s);
@@ -289,13 +268,11 @@ void Record(const RecordOptions& opt,
         throw std::runtime_error(opt.device + ": no scan received; nothing written");
     }
     if (timed_out) {
-        char seconds[32];
-        std::snprintf(seconds, sizeof(seconds), "%g", opt.timeout_s);
-        throw std::runtime_error(opt.device + ": no scan for " + seconds + " s; " +
-                                 (run.scans.empty()
-                                      ? std::string("nothing written")
-                                      : "wrote the " + std::to_string(run.scans.size()) +
-                                            " scans received to " + opt.out));
+        throw std::runtime_error(
+            opt.device + ": no scan for " + core::FormatNumber(opt.timeout_s) + " s; " +
+            (run.scans.empty() ? std::string("nothing written")
+                               : "wrote the " + std::to_string(run.scans.size()) +
+                                     " scans received to " + opt.out));
     }
 }
 

@@ -14,7 +14,6 @@
 #include "apps/casmap/commands.hpp"
 #include "apps/casmap/flag_names.hpp"
 #include "apps/casmap/progress_bar.hpp"
-#include "casmap/core/input_error.hpp"
 #include "casmap/core/text.hpp"
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/output_set.hpp"
@@ -65,13 +64,8 @@ void RunBench(BenchFlags& flags, const CommonOptions& common, bool courses_given
     // The output folder is one set (runs/, sheets/, images, bench.json): filled under a
     // temporary name and swapped in at the end, so a failed or killed bench never mixes new
     // runs with an old bench.json. Only a bench folder (or an empty one) is replaced.
-    std::error_code ec;
-    if (std::filesystem::is_directory(flags.out, ec) && !std::filesystem::is_empty(flags.out, ec) &&
-        !std::filesystem::exists(std::filesystem::path(flags.out) / "bench.json", ec)) {
-        throw MakeInputError(flags.out, "--out", "",
-                             "holds files but no bench.json: not replacing a folder that is not "
-                             "a bench output; choose a new or empty folder");
-    }
+    WithCommandLineFlags({{"out", "--out"}}, [&] { pipeline::CheckBenchOutputFolder(flags.out); },
+                         {{"out", flags.out}});
     const pipeline::DistributedSession session;  // MPI under mpirun/srun, else one rank
     opt.session = &session;
     io::OutputSet outputs;  // rank 0 writes every output

@@ -68,9 +68,12 @@ void WithCommandLineFlags(const FlagNames& names,
         body();
     } catch (const InputError& e) {
         const auto path = paths.find(e.field());
-        if (path != paths.end() && !path->second.empty() && e.where() == path->second &&
-            names.count(e.field()) != 0) {
-            throw MakeInputError(e.where(), names.at(e.field()), e.value(), e.rule());
+        const auto about_path = [&](const std::string& p) {  // the path, or a file in it
+            return !p.empty() && (e.where() == p || e.where().rfind(p + "/", 0) == 0);
+        };
+        if (path != paths.end() && about_path(path->second) && names.count(e.field()) != 0) {
+            throw MakeInputError(e.where(), names.at(e.field()), e.value(),
+                                 ReplaceNames(e.rule(), names, e.field()));
         }
         if (!e.where().empty() || e.field().empty()) {
             throw;

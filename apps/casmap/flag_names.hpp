@@ -27,8 +27,9 @@ void WithFlagNames(const FlagNames& names, const std::function<void()>& body);
 /// rethrown as "command line: <flags> = <value> (<rule>)", every mapped field name standing as
 /// a word in the rule replaced by its flag ("scene and motion go together" -> "--scene and
 /// --motion go together") except the error's own single field ("baud = 7 (... 500000 baud)").
-/// An error whose where() is the path `paths` holds for its (mapped) field keeps its where and
-/// names the flag ("/tmp/p.txt: --poses-out (...)"). Other errors pass unchanged.
+/// An error whose where() is the path `paths` holds for its (mapped) field, or a file in that
+/// folder, keeps its where and names the flag ("/tmp/p.txt: --poses-out (...)"). Other errors
+/// pass unchanged.
 void WithCommandLineFlags(const FlagNames& names,
                           const std::function<void()>& body,
                           const FlagPaths& paths = {});

@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "apps/casmap/commands.hpp"
+#include "apps/casmap/flag_names.hpp"
 #include "apps/casmap/stop_signals.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/pipeline/record.hpp"
@@ -40,33 +41,21 @@ void PrintStats(const pipeline::RecordStats& s) {
 }
 
 /// The library names option fields ("timeout_s"); the user typed flags ("--timeout"). Errors
-/// about the options themselves (no file) read "command line: --flag = value (rule)".
+/// about the options read "command line: --flag = value (rule)", errors about a given path
+/// "PATH: --flag (rule)".
 void RunRecord(const pipeline::RecordOptions& opt) {
-    static const std::pair<const char*, const char*> kFlags[] = {
-        {"device", "--device"},       {"baud", "--baud"},
-        {"variant", "--variant"},     {"out", "--out"},
-        {"poses", "--poses"},         {"timeout_s", "--timeout"},
-        {"duration_s", "--duration"}, {"mode", "--mode"},
-        {"stamps", "--stamps"}};
-    try {
-        const StopSignals signals;
-        pipeline::Record(
-            opt, [] { return g_stop_requested.load(); }, PrintStats);
-    } catch (const InputError& e) {
-        for (const auto& [field, flag] : kFlags) {
-            if (e.field() != field || e.value().empty()) {
-                continue;  // the driver's "<device>: device (not a terminal)" is not a flag's
-            }
-            std::string rule = e.rule();
-            const std::size_t at = rule.find("timeout_s");
-            if (at != std::string::npos) {
-                rule.replace(at, 9, "--timeout");
-            }
-            throw MakeInputError(e.where().empty() ? "command line" : e.where(), flag, e.value(),
-                                 rule);
-        }
-        throw;
-    }
+    static const FlagNames kFlags = {{"device", "--device"},       {"baud", "--baud"},
+                                     {"variant", "--variant"},     {"out", "--out"},
+                                     {"poses", "--poses"},         {"timeout_s", "--timeout"},
+                                     {"duration_s", "--duration"}, {"mode", "--mode"},
+                                     {"stamps", "--stamps"}};
+    const StopSignals signals;
+    WithCommandLineFlags(kFlags,
+                         [&] {
+                             pipeline::Record(
+                                 opt, [] { return g_stop_requested.load(); }, PrintStats);
+                         },
+                         {{"device", opt.device}, {"out", opt.out}, {"poses", opt.poses}});
 }
 
 }  // namespace

@@ -1,10 +1,9 @@
 // casmap sweep [--set NAME=FROM:TO:STEP]... [--fix NAME=VALUE]... [--filter cas|cas_trail|...]
 //              [--courses|--train-courses ...] [--seed N|--train-seeds ...] [--test-seeds ...]
 //              [--test-courses ...] [--grow N] [--tests ...] [--json FILE] [--out DIR] ...
-// A grid over the parameters of CAS or a variant and the table speed (pipeline::RunSweep): PI,
-// spikes and poles kept per grid point on training runs, the best point scored on held-out
-// runs. Outputs (DIR, default out/sweep; rank 0 under mpirun): sweep.json, runs/*.yaml and,
-// for two swept parameters, heatmap.png.
+// A grid over CAS (or variant) parameters and the table speed (pipeline::RunSweep): PI, spikes
+// and poles per point on training runs, the best point scored on held-out runs. Outputs (DIR,
+// default out/sweep; rank 0 under mpirun): sweep.json, runs/*.yaml, heatmap.png (2 axes).
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -12,9 +11,8 @@
 #include "apps/casmap/commands.hpp"
 #include "apps/casmap/flag_names.hpp"
 #include "apps/casmap/progress_bar.hpp"
-#include "casmap/core/input_error.hpp"
 #include "casmap/io/atomic_file.hpp"
-#include "casmap/mapper/filter_params.hpp"
+#include "casmap/io/output_set.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
 #include "casmap/pipeline/distributed.hpp"
 #include "casmap/pipeline/sweep.hpp"
@@ -71,7 +69,7 @@ void RunSweep(SweepFlags& flags, const CommonOptions& common) {
     opt.threads = common.threads;
     opt.Validate();  // bad input exits 2 before any work
     if (!flags.json.empty()) {
-        pipeline::CheckWritableFile(flags.json, "--json");
+        io::CheckOutputPath(flags.json, "--json");
     }
     const pipeline::DistributedSession session;  // MPI under mpirun/srun, else one rank
     opt.session = &session;
