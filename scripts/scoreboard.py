@@ -187,9 +187,11 @@ def terrain_section(terrain):
         and r["filters"][n]["rmse_m"] < r["filters"]["raw"]["rmse_m"] for _, r in cols)]
     lines += ["", "Below the raw map's RMSE on every terrain run: "
               + (", ".join(every) if every else "no pipeline") + "."]
-    lines += ["", "Spikes (raw / cas / cas_trail / cas_median / kalman): " + "; ".join(
+    shown = [n for n in ["raw", "cas", "cas_trail", "cas_median", "cas_edge", "kalman"]
+             if n in names]
+    lines += ["", f"Spikes ({' / '.join(shown)}): " + "; ".join(
         f"{label} " + "/".join(str(r["filters"][n]["spikes"]) if n in r["filters"] else "-"
-                               for n in ["raw", "cas", "cas_trail", "cas_median", "kalman"])
+                               for n in shown)
         for label, r in cols) + "."]
     return lines
 
