@@ -257,8 +257,14 @@ std::size_t SegmentLobes(std::span<const EchoSample> seg,
 PulseRng::PulseRng(std::uint64_t seed,
                    std::uint64_t scan_index,
                    std::uint32_t beam,
+                   std::uint32_t stream)
+    : PulseRng(SeedKey{SplitMix64(seed)}, scan_index, beam, stream) {}
+
+PulseRng::PulseRng(SeedKey key,
+                   std::uint64_t scan_index,
+                   std::uint32_t beam,
                    std::uint32_t stream) {
-    std::uint64_t s = SplitMix64(seed);
+    std::uint64_t s = key.hash;
     s = SplitMix64(s ^ scan_index);
     s = SplitMix64(s ^ ((static_cast<std::uint64_t>(beam) << 8) | stream));
     state_ = s;
@@ -395,6 +401,7 @@ Lms200Model::Lms200Model(const Lms200Config& config, std::uint64_t seed)
             dir_scale_[i] = 1.0 / std::sqrt(1.0 + dir_slope_[i] * dir_slope_[i]);
         }
     }
+    seed_key_ = PulseRng::SeedKey{SplitMix64(seed_)};
     bias_key_ = SplitMix64(seed_ ^ kBiasTag);
     bias_table_.resize(kBiasTableSize);
     for (std::size_t id = 0; id < kBiasTableSize; ++id) {
@@ -469,7 +476,7 @@ PulseFrame Lms200Model::PulseBasis(std::uint64_t scan_index,
     if (config_.rotate_pattern_per_pulse && subray_count_ > 1) {
         // One rotation of the whole pattern per pulse: rotate the transverse basis instead.
         // A uniform angle as a random point of the unit disc, normalised (no trigonometry).
-        PulseRng rng(seed_, scan_index, static_cast<std::uint32_t>(beam), kStreamPattern);
+        PulseRng rng(seed_key_, scan_index, static_cast<std::uint32_t>(beam), kStreamPattern);
         double c = 1.0;
         double s = 0.0;
         for (;;) {
@@ -635,7 +642,7 @@ PulseResult Lms200Model::FormReturn(const PulseContext& pulse,
     }
     const bool target = in_range_weight >= config_.target_min_weight - 1e-12;
     const core::BeamLabel lost = target ? core::BeamLabel::kMissing : core::BeamLabel::kNoTarget;
-    PulseRng rng(seed_, pulse.scan_index, pulse.beam, kStreamReturn);
+    PulseRng rng(seed_key_, pulse.scan_index, pulse.beam, kStreamReturn);
 
     // Short and random spikes (Probabilistic Robotics beam-model structure, [A]).
     if (config_.spikes_enabled) {

@@ -34,6 +34,11 @@ public:
              std::uint64_t scan_index,
              std::uint32_t beam,
              std::uint32_t stream);
+    /// SplitMix64(seed), computed once per run: the same stream without that first hash.
+    struct SeedKey {
+        std::uint64_t hash = 0;
+    };
+    PulseRng(SeedKey key, std::uint64_t scan_index, std::uint32_t beam, std::uint32_t stream);
     [[nodiscard]] std::uint64_t NextU64() {
         state_ += 0x9E3779B97F4A7C15ULL;
         return SplitMix64(state_);
@@ -234,6 +239,7 @@ private:
     double dir_slope_[kMaxSubrays] = {};
     double dir_scale_[kMaxSubrays] = {};
     double sure_peak_ = 1.0;          // peak with detection probability kSureProbability
+    PulseRng::SeedKey seed_key_;      // first hash of every PulseRng, from the seed
     std::uint64_t bias_key_ = 0;      // first hash of the material biases, from the seed
     std::vector<double> bias_table_;  // MaterialBiasM of the first surface ids
     std::vector<double> beam_cos_;
