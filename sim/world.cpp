@@ -503,6 +503,10 @@ void World::CastBatch(const RayBatch& rays, HitBatch& hits) const {
         rh.ray.mask[k] = 0xFFFFFFFFU;
         rh.ray.id[k] = static_cast<unsigned int>(k);
         rh.ray.flags[k] = 0U;
+        // Normals of lanes no ray has hit yet: the |cos| loop reads every lane.
+        rh.hit.Ng_x[k] = 0.0F;
+        rh.hit.Ng_y[k] = 0.0F;
+        rh.hit.Ng_z[k] = 0.0F;
     }
     const float* reflectivity = impl_->reflectivity.data();
     const std::uint8_t* retro = impl_->retro.data();
