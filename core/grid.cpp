@@ -4,6 +4,7 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/limits.hpp"
+#include "casmap/core/text.hpp"
 
 namespace casmap::core {
 
@@ -12,7 +13,7 @@ void GridGeometry::Validate() const {
         throw MakeInputError("grid", "x0_m/y0_m", "", "must be finite");
     }
     if (!(cell_m > 0.0) || !std::isfinite(cell_m)) {
-        throw MakeInputError("grid", "cell_m", std::to_string(cell_m), "must be > 0");
+        throw MakeInputError("grid", "cell_m", FormatNumber(cell_m), "must be > 0");
     }
     if (rows <= 0 || cols <= 0) {
         throw MakeInputError("grid", "rows/cols", std::to_string(rows) + "," + std::to_string(cols),

@@ -1,7 +1,10 @@
 #include "casmap/core/text.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 namespace casmap::core {
 
@@ -71,6 +74,15 @@ std::string FormatNumber(double value) {
     char buffer[32];  // the longest shortest double ("-2.2250738585072014e-308") is 24
     const auto [end, error] = std::to_chars(buffer, buffer + sizeof(buffer), value);
     return error == std::errc() ? std::string(buffer, end) : std::string(".nan");
+}
+
+std::string FormatNumber(double value, int significant_digits) {
+    if (!std::isfinite(value) || value == 0.0) {
+        return FormatNumber(value);
+    }
+    char buffer[48];
+    std::snprintf(buffer, sizeof(buffer), "%.*e", std::max(0, significant_digits - 1), value);
+    return FormatNumber(std::strtod(buffer, nullptr));
 }
 
 }  // namespace casmap::core

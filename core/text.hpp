@@ -30,4 +30,9 @@ namespace casmap::core {
 /// "1000"); "0" for -0; YAML's ".nan", ".inf", "-.inf" for the non-finite values.
 [[nodiscard]] std::string FormatNumber(double value);
 
+/// `value` rounded to `significant_digits` (>= 1) significant digits, then as FormatNumber
+/// writes it: for labels meant to be read, not re-read (PNG legends: 1234.5 at 3 -> "1230",
+/// 0.012345 -> "0.0123").
+[[nodiscard]] std::string FormatNumber(double value, int significant_digits);
+
 }  // namespace casmap::core

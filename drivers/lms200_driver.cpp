@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/drivers/scan_codec.hpp"
 
 namespace casmap::drivers {
@@ -25,7 +26,7 @@ void Sleep(double s) { std::this_thread::sleep_for(std::chrono::duration<double>
 
 void CheckPositive(double v, const char* field) {
     if (!(v > 0.0)) {
-        throw MakeInputError("LMS 200 driver", field, std::to_string(v), "must be > 0");
+        throw MakeInputError("LMS 200 driver", field, core::FormatNumber(v), "must be > 0");
     }
 }
 

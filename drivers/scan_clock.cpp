@@ -5,21 +5,23 @@
 #include <string>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/text.hpp"
 
 namespace casmap::drivers {
 
 void ScanClockConfig::Validate() const {
     if (!(period_s > 0.0)) {
-        throw MakeInputError("scan clock", "period_s", std::to_string(period_s), "must be > 0");
+        throw MakeInputError("scan clock", "period_s", core::FormatNumber(period_s), "must be > 0");
     }
     if (!(window_s > 0.0)) {
-        throw MakeInputError("scan clock", "window_s", std::to_string(window_s), "must be > 0");
+        throw MakeInputError("scan clock", "window_s", core::FormatNumber(window_s), "must be > 0");
     }
     if (!(guard >= 0.0 && guard < 1.0)) {
         throw MakeInputError("scan clock", "guard", std::to_string(guard), "0 <= guard < 1");
     }
     if (!(max_step_s > 0.0)) {
-        throw MakeInputError("scan clock", "max_step_s", std::to_string(max_step_s), "must be > 0");
+        throw MakeInputError("scan clock", "max_step_s", core::FormatNumber(max_step_s),
+                             "must be > 0");
     }
     if (confirm_scans < 1) {
         throw MakeInputError("scan clock", "confirm_scans", std::to_string(confirm_scans), ">= 1");

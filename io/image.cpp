@@ -14,6 +14,7 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/limits.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/io/atomic_file.hpp"
 
 namespace casmap::io {
@@ -138,9 +139,7 @@ void Encode(const fs::path& path, const std::string& ext, const cv::Mat& image) 
 }
 
 std::string Format(double v, const std::string& unit) {
-    std::array<char, 64> buf{};
-    std::snprintf(buf.data(), buf.size(), "%.3g %s", v, unit.c_str());
-    return buf.data();
+    return core::FormatNumber(v, 3) + " " + unit;
 }
 
 int PixelsPerCell(int requested, int rows, int cols) {

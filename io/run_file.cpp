@@ -6,6 +6,7 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/limits.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/hdf5_util.hpp"
 
@@ -69,7 +70,7 @@ std::size_t CheckScans(const fs::path& path, const RunData& data) {
                                  "angles and beam timing must equal those of scans[0]");
         }
         if (!std::isfinite(s.stamp_s)) {
-            throw MakeInputError(path.string(), where + ".stamp_s", std::to_string(s.stamp_s),
+            throw MakeInputError(path.string(), where + ".stamp_s", core::FormatNumber(s.stamp_s),
                                  "must be finite");
         }
     }
@@ -106,7 +107,7 @@ void WriteScans(hid_t file, const fs::path& path, const RunData& data) {
                 throw MakeInputError(
                     path.string(),
                     "scans[" + std::to_string(i) + "].beams[" + std::to_string(j) + "].range_m",
-                    std::to_string(b.range_m), "status ok needs a finite range");
+                    core::FormatNumber(b.range_m), "status ok needs a finite range");
             }
             ranges[k] = b.status == core::BeamStatus::kOk ? b.range_m : kNaN;
             raw[k] = b.raw;
@@ -503,7 +504,7 @@ RunMaps ReadMaps(const h5::FileReader& r) {
     g.rows = RequiredCount(r, "rows");
     g.cols = RequiredCount(r, "cols");
     if (!(g.cell_m > 0.0)) {
-        throw r.Error(h5::AttributeWhere("/maps", "cell_m"), std::to_string(g.cell_m),
+        throw r.Error(h5::AttributeWhere("/maps", "cell_m"), core::FormatNumber(g.cell_m),
                       "must be > 0");
     }
     maps.grid = g;

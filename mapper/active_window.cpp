@@ -8,6 +8,7 @@
 #include <string>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/mapper/beam_geometry.hpp"
 
 namespace casmap::mapper {
@@ -30,7 +31,7 @@ double HeadingOf(const core::Pose& p) {
 
 void Require(bool ok, const char* field, double value, const std::string& rule) {
     if (!ok) {
-        throw MakeInputError(kWhere, field, std::to_string(value), rule);
+        throw MakeInputError(kWhere, field, core::FormatNumber(value), rule);
     }
 }
 

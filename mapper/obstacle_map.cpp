@@ -6,6 +6,7 @@
 #include <string>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/text.hpp"
 
 namespace casmap::mapper {
 namespace {
@@ -20,11 +21,11 @@ std::int64_t FloorDiv(std::int64_t a, std::int64_t b) {
 ObstacleMap::ObstacleMap(double cell_m, double x0_m, double y0_m)
     : cell_m_(cell_m), x0_m_(x0_m), y0_m_(y0_m) {
     if (!(std::isfinite(cell_m) && cell_m > 0.0)) {
-        throw MakeInputError("obstacle map", "cell_m", std::to_string(cell_m),
+        throw MakeInputError("obstacle map", "cell_m", core::FormatNumber(cell_m),
                              "must be finite and > 0");
     }
     if (!(std::isfinite(x0_m) && std::isfinite(y0_m))) {
-        throw MakeInputError("obstacle map", "origin", std::to_string(x0_m), "must be finite");
+        throw MakeInputError("obstacle map", "origin", core::FormatNumber(x0_m), "must be finite");
     }
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/mapper/beam_geometry.hpp"
 
 namespace casmap::mapper {
@@ -18,14 +19,14 @@ using detail::ZRow;
 void TerrainMapperConfig::Validate() const {
     grid.Validate();
     if (!(std::isfinite(delta_l_m) && delta_l_m >= 0.0)) {
-        throw MakeInputError("mapper", "delta_l_m", std::to_string(delta_l_m),
+        throw MakeInputError("mapper", "delta_l_m", core::FormatNumber(delta_l_m),
                              "must be finite and >= 0");
     }
     if (a < 1) {
         throw MakeInputError("mapper", "a", std::to_string(a), "must be a positive integer");
     }
     if (!(std::isfinite(scan_period_s) && scan_period_s > 0.0)) {
-        throw MakeInputError("mapper", "scan_period_s", std::to_string(scan_period_s),
+        throw MakeInputError("mapper", "scan_period_s", core::FormatNumber(scan_period_s),
                              "must be finite and > 0");
     }
 }

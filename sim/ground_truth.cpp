@@ -13,6 +13,7 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/sim/box_shape.hpp"
 
 namespace casmap::sim {
@@ -277,7 +278,8 @@ void CentreOfRow(const Primitives& prims,
 
 void GroundTruthOptions::Validate() const {
     if (!std::isfinite(datum_m)) {
-        throw MakeInputError("ground truth", "datum_m", std::to_string(datum_m), "must be finite");
+        throw MakeInputError("ground truth", "datum_m", core::FormatNumber(datum_m),
+                             "must be finite");
     }
     if (cylinder_segments < 8) {
         throw MakeInputError("ground truth", "cylinder_segments", std::to_string(cylinder_segments),

@@ -61,3 +61,19 @@ TEST(FormatNumber, ShortestRoundTripAndYamlSpecials) {
 
 }  // namespace
 }  // namespace casmap::core
+
+namespace casmap::core {
+namespace {
+
+TEST(FormatNumber, SignificantDigitsForLabels) {
+    EXPECT_EQ(FormatNumber(1234.5, 3), "1230");  // %.3g said "1.23e+03"
+    EXPECT_EQ(FormatNumber(0.012345, 3), "0.0123");
+    EXPECT_EQ(FormatNumber(-0.5, 3), "-0.5");
+    EXPECT_EQ(FormatNumber(0.30000000000000004, 3), "0.3");
+    EXPECT_EQ(FormatNumber(2.0, 1), "2");
+    EXPECT_EQ(FormatNumber(0.0, 3), "0");
+    EXPECT_EQ(FormatNumber(std::nan(""), 3), ".nan");
+}
+
+}  // namespace
+}  // namespace casmap::core
