@@ -33,6 +33,6 @@ struct Preset {
 /// InputError naming `field` for an unknown name (listing the presets that exist), and the
 /// file:line:col plus `set.<NAME>` / `pipelines.<P>[.<NAME>]` for a bad entry or an unknown
 /// pipeline name.
-[[nodiscard]] Preset LoadPreset(const std::string& name, const std::string& field = "--preset");
+[[nodiscard]] Preset LoadPreset(const std::string& name, const std::string& field = "preset");
 
 }  // namespace casmap::pipeline

@@ -73,7 +73,7 @@ struct Server::Impl {
 Server::Server(const SiteOptions& site, const ServerOptions& options)
     : impl_(std::make_unique<Impl>(site, options)) {
     if (options.port < 0 || options.port > 65535) {
-        throw MakeInputError("", "--port", std::to_string(options.port), "allowed: 0..65535");
+        throw MakeInputError("", "port", std::to_string(options.port), "allowed: 0..65535");
     }
     httplib::Server& http = impl_->http;
     // httplib's default sets SO_REUSEPORT, which lets a second server share a busy port: only
@@ -104,7 +104,7 @@ void Server::Start() {
     in6_addr v6{};
     if (host != "localhost" && inet_pton(AF_INET, host.c_str(), &v4) != 1 &&
         inet_pton(AF_INET6, host.c_str(), &v6) != 1) {
-        throw MakeInputError("", "--host", host, "must be an IP address of this machine");
+        throw MakeInputError("", "host", host, "must be an IP address of this machine");
     }
     if (impl.options.port == 0) {
         impl.port = impl.http.bind_to_any_port(host);
@@ -115,7 +115,7 @@ void Server::Start() {
         impl.port = impl.options.port;
     }
     if (impl.port == 0) {
-        throw MakeInputError("", "--port", std::to_string(impl.options.port),
+        throw MakeInputError("", "port", std::to_string(impl.options.port),
                              "cannot listen on " + host + ": port busy or not permitted");
     }
     impl.thread = std::thread([&impl] {

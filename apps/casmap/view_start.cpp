@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "apps/casmap/flag_names.hpp"
+
 namespace casmap::app {
 
 std::unique_ptr<view::Server> StartViewServer(const std::string& command,
@@ -13,8 +15,11 @@ std::unique_ptr<view::Server> StartViewServer(const std::string& command,
     site.dir = dir;
     site.web_dir = view::FindWebDir();
     site.kind = kind;
-    auto server = std::make_unique<view::Server>(site, view::ServerOptions{host, port});
-    server->Start();
+    std::unique_ptr<view::Server> server;
+    WithCommandLineFlags({{"port", "--port"}, {"host", "--host"}}, [&] {
+        server = std::make_unique<view::Server>(site, view::ServerOptions{host, port});
+        server->Start();
+    });
     if (!view::IsLoopback(host)) {
         std::fprintf(stderr,
                      "casmap %s: warning: --host %s makes %s readable by anyone who can reach "

@@ -183,18 +183,18 @@ TEST(Presets, BadFilesNameTheFileAndField) {
     }
 }
 
-TEST(Presets, MissingPresetsAndBadNamesAreErrorsNamingTheFlag) {
+TEST(Presets, MissingPresetsAndBadNamesAreErrorsNamingTheField) {
     // `tuned` comes from the training-seed sweep; until config/presets/tuned.yaml exists the
     // error says so.
     if (!fs::exists(PresetsDir() / "tuned.yaml")) {
         const InputError e = PresetError("tuned");
-        EXPECT_EQ(e.field(), "--preset");
+        EXPECT_EQ(e.field(), "preset");  // the library names no flag
         EXPECT_NE(std::string(e.what()).find("paper"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("training-seed sweep"), std::string::npos);
     }
-    EXPECT_EQ(PresetError("no_such_preset").field(), "--preset");
-    EXPECT_EQ(PresetError("bad name!").field(), "--preset");
-    EXPECT_EQ(PresetError("/nonexistent/x.yaml").field(), "--preset");
+    EXPECT_EQ(PresetError("no_such_preset").field(), "preset");
+    EXPECT_EQ(PresetError("bad name!").field(), "preset");
+    EXPECT_EQ(PresetError("/nonexistent/x.yaml").field(), "preset");
 }
 
 }  // namespace
