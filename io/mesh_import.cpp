@@ -14,6 +14,7 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/limits.hpp"
+#include "casmap/core/text.hpp"
 
 // Debian's assimp is built with ASSIMP_BUILD_DEBUG: a failed internal consistency check
 // (ai_assert, e.g. "numOut != pMesh->mNumFaces" in TriangulateProcess on a malformed PLY)
@@ -180,7 +181,7 @@ const aiScene* ImportChecked(Assimp::Importer& importer, const std::string& name
 void CheckScale(const std::string& name, const Eigen::Vector3d& scale) {
     for (int i = 0; i < 3; ++i) {
         if (!(scale[i] > 0.0) || !std::isfinite(scale[i])) {
-            throw MakeInputError(name, "scale", std::to_string(scale[i]), "must be > 0");
+            throw MakeInputError(name, "scale", core::FormatNumber(scale[i]), "must be > 0");
         }
     }
 }

@@ -374,12 +374,12 @@ void ReadScans(const h5::FileReader& r, RunData& data) {
     for (std::size_t i = 0; i < data.scans.size(); ++i) {
         core::Scan& s = data.scans[i];
         if (!std::isfinite(stamps[i])) {
-            throw r.Error("/scans/stamp_s[" + std::to_string(i) + "]", std::to_string(stamps[i]),
-                          "must be finite");
+            throw r.Error("/scans/stamp_s[" + std::to_string(i) + "]",
+                          core::FormatNumber(stamps[i]), "must be finite");
         }
         if (i > 0 && !(stamps[i] > stamps[i - 1])) {
             throw r.Error(
-                "/scans/stamp_s[" + std::to_string(i) + "]", std::to_string(stamps[i]),
+                "/scans/stamp_s[" + std::to_string(i) + "]", core::FormatNumber(stamps[i]),
                 "stamps must increase strictly (previous " + std::to_string(stamps[i - 1]) + ")");
         }
         s.stamp_s = stamps[i];
@@ -395,7 +395,7 @@ void ReadScans(const h5::FileReader& r, RunData& data) {
             beam.raw = raw[k];
             beam.range_m = beam.status == core::BeamStatus::kOk ? ranges[k] : kNaN;
             if (beam.status == core::BeamStatus::kOk && !(ranges[k] >= 0.0F && ranges[k] <= 1e3F)) {
-                throw r.Error(BeamIndex("/scans/ranges_m", k, beams), std::to_string(ranges[k]),
+                throw r.Error(BeamIndex("/scans/ranges_m", k, beams), core::FormatNumber(ranges[k]),
                               "a beam with status 0 (ok) needs a range in 0..1000 m");
             }
         }
