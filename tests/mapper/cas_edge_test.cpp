@@ -12,33 +12,14 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/mapper/filters.hpp"
+#include "synthetic_maps.hpp"
 
 namespace casmap::mapper {
 namespace {
 
-// Deterministic +-2 mm "noise" from a counter hash.
-float Noise(int i, int j) {
-    std::uint32_t x = static_cast<std::uint32_t>(i * 7919 + j * 104729 + 17);
-    x ^= x >> 13;
-    x *= 0x5bd1e995U;
-    x ^= x >> 15;
-    return (static_cast<float>(x % 1001) / 1000.0F - 0.5F) * 0.004F;
-}
-
-struct Maps {
-    core::MapF h = core::MapF(40, 40, 0.0F);
-    core::MapF c = core::MapF(40, 40, 36.0F);
-};
-
-Maps NoisyFloor() {
-    Maps p;
-    for (int i = 0; i < 40; ++i) {
-        for (int j = 0; j < 40; ++j) {
-            p.h.at(i, j) = Noise(i, j);
-        }
-    }
-    return p;
-}
+using test_maps::Maps;
+using test_maps::Noise;
+using test_maps::NoisyFloor;
 
 // A one-cell pole at (15, 20) seen 80 times, two halo cells holding its top (seen 40 and 30
 // times), and a five-cell trail of one-hit cells falling from the pole's height to the floor.

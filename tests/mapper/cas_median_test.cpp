@@ -8,34 +8,20 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/mapper/filters.hpp"
+#include "synthetic_maps.hpp"
 
 namespace casmap::mapper {
 namespace {
 
-// Deterministic +-2 mm "noise" from a counter hash.
-float Noise(int i, int j) {
-    std::uint32_t x = static_cast<std::uint32_t>(i * 7919 + j * 104729 + 17);
-    x ^= x >> 13;
-    x *= 0x5bd1e995U;
-    x ^= x >> 15;
-    return (static_cast<float>(x % 1001) / 1000.0F - 0.5F) * 0.004F;
-}
-
-struct Maps {
-    core::MapF h = core::MapF(40, 40, 0.0F);
-    core::MapF c = core::MapF(40, 40, 36.0F);
-};
+using test_maps::Maps;
+using test_maps::Noise;
+using test_maps::NoisyFloor;
 
 // Well-observed noisy floor; a one-cell pole at (15, 20) seen 24 times; two halo cells beside
 // it holding the pole's top (seen 12 and 9 times); a trail of one-hit cells falling from the
 // pole's height to the floor.
 Maps PoleWithTrailAndHalo() {
-    Maps p;
-    for (int i = 0; i < 40; ++i) {
-        for (int j = 0; j < 40; ++j) {
-            p.h.at(i, j) = Noise(i, j);
-        }
-    }
+    Maps p = NoisyFloor();
     p.h.at(15, 20) = 0.914F;
     p.c.at(15, 20) = 240.0F;
     p.h.at(15, 21) = 0.91F;

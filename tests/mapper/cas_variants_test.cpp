@@ -7,18 +7,12 @@
 #include <cstring>
 
 #include "casmap/mapper/filters.hpp"
+#include "synthetic_maps.hpp"
 
 namespace casmap::mapper {
 namespace {
 
-// Deterministic +-2 mm "noise" from a counter hash.
-float Noise(int i, int j) {
-    std::uint32_t x = static_cast<std::uint32_t>(i * 7919 + j * 104729 + 17);
-    x ^= x >> 13;
-    x *= 0x5bd1e995U;
-    x ^= x >> 15;
-    return (static_cast<float>(x % 1001) / 1000.0F - 0.5F) * 0.004F;
-}
+using test_maps::Noise;
 
 // A sparsely observed surface (every cell one hit, c = 3 < A = 12, window sums below G): the
 // regime where Eq. 7 removes what looks discontinuous.
