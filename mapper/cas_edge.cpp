@@ -24,6 +24,12 @@
 //              certainty-weighted centroid of the known cells of its 3 x 3 within edge_tol_m
 //              of its height (that cell's own h; the peak's h if that cell is not in the set);
 //   out = M    everywhere else.
+// cas_hybrid (docs/paper-notes.md "cas_hybrid") is cas_edge plus cas_median's surface rule for
+// the known cells that stand out from M but are not candidates (cas_trail removed them, or they
+// lie within k of the map's border): one with >= surface_min known window cells within
+// surface_tol_m of its height takes the lower median of those cells (detail::SurfaceMedian)
+// instead of M. On the training maps those are one-hit cells at a box's far edges and corners,
+// in sparsely seen windows, that Eq. 10 removed inside cas_trail; M rounds them to the floor.
 // Every value comes from the unfiltered map, cas_trail's output or the median; the centroid is
 // summed in a fixed order, so the output is the same bit for bit at any thread count.
 #include <algorithm>
@@ -31,13 +37,17 @@
 #include <cstdint>
 #include <vector>
 
+#include "casmap/mapper/cas_surface.hpp"
 #include "casmap/mapper/filters.hpp"
 
 namespace casmap::mapper {
+namespace {
 
-FilterResult CasEdgeFilter(const core::MapF& elevation,
-                           const core::MapF& certainty,
-                           const FilterParams& params) {
+// cas_edge; with surface_median, cas_hybrid (see the top of the file).
+FilterResult EdgeFilter(const core::MapF& elevation,
+                        const core::MapF& certainty,
+                        const FilterParams& params,
+                        bool surface_median) {
     params.Validate();
     CasParams cas = params.cas;
     cas.support = Support::kHeight;
@@ -45,6 +55,8 @@ FilterResult CasEdgeFilter(const core::MapF& elevation,
     const core::MapF median = MedianFilter(out.elevation, params.baseline);
     const auto tol = static_cast<float>(cas.support_tol_m);
     const auto edge_tol = static_cast<float>(cas.edge_tol_m);
+    const auto surface_tol = static_cast<float>(cas.surface_tol_m);
+    std::vector<float> samples;
     const int rows = elevation.rows;
     const int cols = elevation.cols;
     const int k = cas.k;
@@ -89,7 +101,16 @@ FilterResult CasEdgeFilter(const core::MapF& elevation,
                 }
                 surface = same >= cas.edge_min;
             }
-            out.elevation.data[n] = surface ? elevation.data[n] : median.data[n];
+            if (surface) {
+                out.elevation.data[n] = elevation.data[n];
+            } else if (surface_median && candidate[n] == 0 && known(n) &&
+                       !(std::abs(elevation.data[n] - median.data[n]) <= tol)) {
+                out.elevation.data[n] = detail::SurfaceMedian(elevation, certainty, i, j, k,
+                                                              surface_tol, cas.surface_min, samples)
+                                            .value_or(median.data[n]);
+            } else {
+                out.elevation.data[n] = median.data[n];
+            }
             if (peak && !surface) {
                 peaks.push_back(n);
             }
@@ -126,6 +147,20 @@ FilterResult CasEdgeFilter(const core::MapF& elevation,
             known(o) && std::abs(elevation.data[o] - h) <= edge_tol ? elevation.data[o] : h;
     }
     return out;
+}
+
+}  // namespace
+
+FilterResult CasEdgeFilter(const core::MapF& elevation,
+                           const core::MapF& certainty,
+                           const FilterParams& params) {
+    return EdgeFilter(elevation, certainty, params, false);
+}
+
+FilterResult CasHybridFilter(const core::MapF& elevation,
+                             const core::MapF& certainty,
+                             const FilterParams& params) {
+    return EdgeFilter(elevation, certainty, params, true);
 }
 
 }  // namespace casmap::mapper

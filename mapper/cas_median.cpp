@@ -30,21 +30,19 @@
 #include <optional>
 #include <vector>
 
+#include "casmap/mapper/cas_surface.hpp"
 #include "casmap/mapper/filters.hpp"
 
 namespace casmap::mapper {
-namespace {
 
-// The lower median of the known cells (c > 0, not NaN) of the (2k+1)^2 window around (i, j),
-// inside the map, whose height is within tol of h(i, j); nullopt if fewer than min_cells.
-std::optional<float> SurfaceMedian(const core::MapF& elevation,
-                                   const core::MapF& certainty,
-                                   int i,
-                                   int j,
-                                   int k,
-                                   float tol,
-                                   int min_cells,
-                                   std::vector<float>& samples) {
+std::optional<float> detail::SurfaceMedian(const core::MapF& elevation,
+                                           const core::MapF& certainty,
+                                           int i,
+                                           int j,
+                                           int k,
+                                           float tol,
+                                           int min_cells,
+                                           std::vector<float>& samples) {
     const float h = elevation.at(i, j);
     samples.clear();
     for (int r = std::max(0, i - k); r <= std::min(elevation.rows - 1, i + k); ++r) {
@@ -62,8 +60,6 @@ std::optional<float> SurfaceMedian(const core::MapF& elevation,
     std::nth_element(samples.begin(), mid, samples.end());
     return *mid;
 }
-
-}  // namespace
 
 FilterResult CasMedianFilter(const core::MapF& elevation,
                              const core::MapF& certainty,
@@ -115,8 +111,8 @@ FilterResult CasMedianFilter(const core::MapF& elevation,
             if (object) {
                 out.elevation.data[n] = elevation.data[n];
             } else if (stands_out[n] != 0) {
-                out.elevation.data[n] = SurfaceMedian(elevation, certainty, i, j, k, surface_tol,
-                                                      cas.surface_min, samples)
+                out.elevation.data[n] = detail::SurfaceMedian(elevation, certainty, i, j, k,
+                                                              surface_tol, cas.surface_min, samples)
                                             .value_or(median.data[n]);
             } else {
                 out.elevation.data[n] = median.data[n];

@@ -43,7 +43,7 @@ void CheckPixels(const core::MapF& map,
 bool NeedsCertainty(FilterMethod method) {
     return method == FilterMethod::kCas || method == FilterMethod::kCasTerrain ||
            method == FilterMethod::kCasTrail || method == FilterMethod::kCasMedian ||
-           method == FilterMethod::kCasEdge;
+           method == FilterMethod::kCasEdge || method == FilterMethod::kCasHybrid;
 }
 
 void CheckFilterInputs(FilterMethod method,

@@ -17,7 +17,7 @@ struct FilterInputNames {
 };
 
 /// True for the methods that read a certainty map (cas, cas_terrain, cas_trail, cas_median,
-/// cas_edge).
+/// cas_edge, cas_hybrid).
 [[nodiscard]] bool NeedsCertainty(FilterMethod method);
 
 /// Checks an elevation map H (m) and certainty map C (counts; empty = not given) for `method`:

@@ -237,7 +237,7 @@ FilterMethod ParseFilterMethod(std::string_view name, const std::string& field) 
     }
     throw MakeInputError("", field, std::string(name),
                          "allowed: cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median|"
-                         "cas_edge");
+                         "cas_edge|cas_hybrid");
 }
 
 std::string_view ToString(FilterMethod method) {
@@ -260,6 +260,8 @@ std::string_view ToString(FilterMethod method) {
             return "cas_median";
         case FilterMethod::kCasEdge:
             return "cas_edge";
+        case FilterMethod::kCasHybrid:
+            return "cas_hybrid";
     }
     return "?";
 }
@@ -275,7 +277,8 @@ const std::vector<FilterMethod>& AllFilterMethodsWithVariants() {
     static const std::vector<FilterMethod> all = {
         FilterMethod::kCas,      FilterMethod::kWiener,    FilterMethod::kAverage,
         FilterMethod::kMedian,   FilterMethod::kCwm,       FilterMethod::kCasTerrain,
-        FilterMethod::kCasTrail, FilterMethod::kCasMedian, FilterMethod::kCasEdge};
+        FilterMethod::kCasTrail, FilterMethod::kCasMedian, FilterMethod::kCasEdge,
+        FilterMethod::kCasHybrid};
     return all;
 }
 

@@ -16,7 +16,8 @@ namespace casmap::mapper {
 /// estimate) and cas_trail (removal also of low-certainty cells without support at their
 /// own height: the mixed-pixel trail beside a pole), cas_median (cas_trail's kept objects at
 /// their height, the median everywhere else), cas_edge (the median of cas_trail's output,
-/// with objects and same-height surfaces such as box edges kept at their height).
+/// with objects and same-height surfaces such as box edges kept at their height), cas_hybrid
+/// (cas_edge plus cas_median's surface rule for the cells cas_edge leaves at the median).
 enum class FilterMethod {
     kCas,
     kWiener,
@@ -26,10 +27,12 @@ enum class FilterMethod {
     kCasTerrain,
     kCasTrail,
     kCasMedian,
-    kCasEdge
+    kCasEdge,
+    kCasHybrid
 };
 
-/// "cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median|cas_edge" -> method; throws
+/// "cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median|cas_edge|cas_hybrid" ->
+/// method; throws
 /// InputError naming `field`.
 [[nodiscard]] FilterMethod ParseFilterMethod(std::string_view name,
                                              const std::string& field = "method");

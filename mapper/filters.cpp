@@ -32,6 +32,8 @@ FilterResult RunFilter(FilterMethod method,
             return CasMedianFilter(elevation, certainty, params);
         case FilterMethod::kCasEdge:
             return CasEdgeFilter(elevation, certainty, params);
+        case FilterMethod::kCasHybrid:
+            return CasHybridFilter(elevation, certainty, params);
     }
     return {};
 }

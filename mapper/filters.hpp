@@ -60,6 +60,14 @@ void CasFilterInto(const core::MapF& elevation,
                                          const core::MapF& certainty,
                                          const FilterParams& params);
 
+/// cas_hybrid (mapper/cas_edge.cpp): cas_edge, plus cas_median's surface rule on the known cells
+/// that differ from M by more than support_tol_m but are not candidates: one with >=
+/// surface_min known window cells within surface_tol_m of its height takes the lower median of
+/// those cells instead of M. Classes = cas_trail's. Throws InputError as RunFilter.
+[[nodiscard]] FilterResult CasHybridFilter(const core::MapF& elevation,
+                                           const core::MapF& certainty,
+                                           const FilterParams& params);
+
 /// Baselines (mapper/baseline_filters.cpp). Every one replicates the edge pixels beyond the
 /// border (OpenCV BORDER_REPLICATE, the mode cv::medianBlur uses internally).
 [[nodiscard]] core::MapF WienerFilter(const core::MapF& elevation, const BaselineParams& params);

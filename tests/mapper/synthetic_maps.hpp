@@ -1,5 +1,6 @@
 // Synthetic elevation/certainty maps shared by the CAS-variant tests (cas_median, cas_edge,
-// cas_variants): a deterministic +-2 mm floor noise and a 40 x 40 well-observed noisy floor.
+// cas_hybrid, cas_variants): a deterministic +-2 mm floor noise and a 40 x 40 well-observed
+// noisy floor.
 #pragma once
 
 #include <cstdint>

@@ -1,0 +1,242 @@
+// cas_hybrid on closed-form synthetic maps: a pole with a trail and a halo (pole kept bit for
+// bit, trail and halo gone), a box's edges and corners (kept bit for bit), a box seen once
+// whose corners cas_trail removes (cas_edge leaves the floor's median there, cas_hybrid the
+// lower median of the corner's same-height cells, computed here independently), a flat floor,
+// unknown = NaN, bit-determinism and parameter validation naming the field.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "casmap/core/input_error.hpp"
+#include "casmap/mapper/filters.hpp"
+#include "synthetic_maps.hpp"
+
+namespace casmap::mapper {
+namespace {
+
+using test_maps::Maps;
+using test_maps::Noise;
+using test_maps::NoisyFloor;
+
+bool SameBits(const core::MapF& a, const core::MapF& b) {
+    return a.data.size() == b.data.size() &&
+           std::memcmp(a.data.data(), b.data.data(), 4 * a.data.size()) == 0;
+}
+
+bool SameBits(float a, float b) { return std::memcmp(&a, &b, 4) == 0; }
+
+// A one-cell pole at (15, 20) seen 80 times, two halo cells holding its top, and a five-cell
+// trail of one-hit cells falling from the pole's height to the floor.
+Maps PoleWithTrailAndHalo() {
+    Maps p = NoisyFloor();
+    p.h.at(15, 20) = 0.914F;
+    p.c.at(15, 20) = 240.0F;
+    p.h.at(15, 21) = 0.91F;
+    p.c.at(15, 21) = 120.0F;
+    p.h.at(14, 20) = 0.905F;
+    p.c.at(14, 20) = 90.0F;
+    const float trail[] = {0.72F, 0.55F, 0.41F, 0.3F, 0.17F};
+    for (int n = 0; n < 5; ++n) {
+        p.h.at(16 + n, 20) = trail[n];
+        p.c.at(16 + n, 20) = 3.0F;
+    }
+    return p;
+}
+
+// A 10 x 10 box (rows 20-29, columns 10-19) at 0.3 m +- 2 mm on the noisy floor.
+Maps NoisyBox(float certainty) {
+    Maps p = NoisyFloor();
+    for (int i = 0; i < 40; ++i) {
+        for (int j = 0; j < 40; ++j) {
+            p.c.at(i, j) = certainty;
+            if (i >= 20 && i < 30 && j >= 10 && j < 20) {
+                p.h.at(i, j) = 0.3F + Noise(j, i);
+            }
+        }
+    }
+    return p;
+}
+
+// The closed form of the surface rule: the lower median of the known cells of the 5 x 5
+// window around (i, j) within tol of h(i, j).
+float LowerMedianOfSameHeight(const Maps& p, int i, int j, float tol) {
+    std::vector<float> v;
+    for (int r = i - 2; r <= i + 2; ++r) {
+        for (int s = j - 2; s <= j + 2; ++s) {
+            if (r >= 0 && r < 40 && s >= 0 && s < 40 && p.c.at(r, s) > 0.0F &&
+                std::abs(p.h.at(r, s) - p.h.at(i, j)) <= tol) {
+                v.push_back(p.h.at(r, s));
+            }
+        }
+    }
+    std::sort(v.begin(), v.end());
+    return v[(v.size() - 1) / 2];
+}
+
+constexpr std::pair<int, int> kCorners[] = {{20, 10}, {20, 19}, {29, 10}, {29, 19}};
+
+TEST(CasHybrid, RemovesTrailAndHaloKeepsThePole) {
+    const Maps p = PoleWithTrailAndHalo();
+    const FilterParams params;
+    const FilterResult out = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, params);
+    EXPECT_EQ(out.elevation.at(15, 20), 0.914F);                      // the pole, bit for bit
+    EXPECT_LT(MedianFilter(p.h, params.baseline).at(15, 20), 0.05F);  // the median deletes it
+    EXPECT_LT(out.elevation.at(15, 21), 0.05F);                       // the halo is gone
+    EXPECT_LT(out.elevation.at(14, 20), 0.05F);
+    for (int n = 0; n < 5; ++n) {
+        EXPECT_LT(out.elevation.at(16 + n, 20), 0.05F) << n;  // the trail is gone
+    }
+    const FilterResult trail = RunFilter(FilterMethod::kCasTrail, p.h, p.c, params);
+    EXPECT_EQ(out.classes.data, trail.classes.data);  // classes are cas_trail's
+    // No trail cell is a surface (the trail's heights are 0.11-0.19 m apart): cas_edge's map.
+    EXPECT_TRUE(
+        SameBits(out.elevation, RunFilter(FilterMethod::kCasEdge, p.h, p.c, params).elevation));
+}
+
+TEST(CasHybrid, KeepsABoxsEdgesAndCornersBitForBit) {
+    // An exact 0.2 m box on an exact floor: every cell, edges and corners included, as measured.
+    Maps flat;
+    for (int i = 20; i < 30; ++i) {
+        for (int j = 10; j < 20; ++j) {
+            flat.h.at(i, j) = 0.2F;
+        }
+    }
+    const FilterParams params;
+    EXPECT_TRUE(
+        SameBits(RunFilter(FilterMethod::kCasHybrid, flat.h, flat.c, params).elevation, flat.h));
+    // A noisy, well-observed box: each corner keeps its measured height although the median
+    // returns the floor there (9 box cells of 25); the map is cas_edge's bit for bit (every
+    // cell that stands out from the median is a cas_edge candidate).
+    const Maps p = NoisyBox(36.0F);
+    const FilterResult out = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, params);
+    const core::MapF median = MedianFilter(p.h, params.baseline);
+    for (const auto& [i, j] : kCorners) {
+        EXPECT_LT(median.at(i, j), 0.05F);
+        EXPECT_TRUE(SameBits(out.elevation.at(i, j), p.h.at(i, j))) << i << "," << j;
+    }
+    EXPECT_TRUE(
+        SameBits(out.elevation, RunFilter(FilterMethod::kCasEdge, p.h, p.c, params).elevation));
+    EXPECT_EQ(out.elevation.at(25, 15), median.at(25, 15));  // inside: the median's
+}
+
+TEST(CasHybrid, RestoresABoxCornerCasTrailRemoved) {
+    // The box and the floor seen once (c = 3 <= A): with h_sum_min 11 each corner window (9
+    // box cells of 25) has too little height for Eq. 10's continuity and too little certainty
+    // (75 < G), so cas_trail removes the four corners; their 5 x 5 median over cas_trail's
+    // map is the floor. cas_edge leaves that; cas_hybrid sees a corner that stands out from it
+    // with 9 known cells within surface_tol_m: the lower median of those.
+    const Maps p = NoisyBox(3.0F);
+    FilterParams params;
+    params.Set("h_sum_min", "11");
+    const FilterResult trail = RunFilter(FilterMethod::kCasTrail, p.h, p.c, params);
+    const FilterResult edge = RunFilter(FilterMethod::kCasEdge, p.h, p.c, params);
+    const FilterResult out = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, params);
+    const auto tol = static_cast<float>(params.cas.surface_tol_m);
+    for (const auto& [i, j] : kCorners) {
+        EXPECT_EQ(trail.classes.at(i, j), static_cast<std::uint8_t>(PixelClass::kRemoved));
+        EXPECT_LT(std::abs(edge.elevation.at(i, j)), 0.01F) << i << "," << j;
+        EXPECT_TRUE(SameBits(out.elevation.at(i, j), LowerMedianOfSameHeight(p, i, j, tol)))
+            << i << "," << j << ": " << out.elevation.at(i, j);
+        EXPECT_NEAR(out.elevation.at(i, j), 0.3F, 0.003F);
+    }
+    // Everywhere else cas_edge's map, bit for bit.
+    int differ = 0;
+    for (std::size_t n = 0; n < p.h.data.size(); ++n) {
+        differ += std::memcmp(&edge.elevation.data[n], &out.elevation.data[n], 4) != 0 ? 1 : 0;
+    }
+    EXPECT_EQ(differ, 4);
+    // surface_min above the corner's 9 same-height cells: no surface, cas_edge's floor.
+    params.Set("surface_min", "10");
+    const FilterResult strict = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, params);
+    EXPECT_LT(std::abs(strict.elevation.at(20, 10)), 0.01F);
+}
+
+TEST(CasHybrid, LeavesAFlatFloorAsTheMedianAndIsBitDeterministic) {
+    Maps flat;  // exactly 0 m, all observed
+    const FilterParams params;
+    EXPECT_TRUE(
+        SameBits(RunFilter(FilterMethod::kCasHybrid, flat.h, flat.c, params).elevation, flat.h));
+    Maps p = NoisyFloor();
+    for (int i = 0; i < 40; ++i) {
+        for (int j = 0; j < 40; ++j) {
+            p.c.at(i, j) = static_cast<float>(3 * (1 + (i + j) % 5));
+        }
+    }
+    const FilterResult a = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, params);
+    const FilterResult b = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, params);
+    EXPECT_TRUE(SameBits(a.elevation, MedianFilter(p.h, params.baseline)));
+    EXPECT_TRUE(SameBits(a.elevation, b.elevation));
+    EXPECT_EQ(a.classes.data, b.classes.data);
+}
+
+TEST(CasHybrid, UnknownAsNaNFillsHolesAndNeverInventsTerrain) {
+    Maps p = PoleWithTrailAndHalo();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    p.h.at(8, 8) = nan;  // one never-observed floor cell: CAS's fill branch fills it
+    p.c.at(8, 8) = 0.0F;
+    for (int i = 26; i < 37; ++i) {  // an 11 x 11 never-observed patch
+        for (int j = 26; j < 37; ++j) {
+            p.h.at(i, j) = nan;
+            p.c.at(i, j) = 0.0F;
+        }
+    }
+    FilterParams params;
+    params.Set("unknown", "nan");
+    const FilterResult out = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, params);
+    EXPECT_EQ(out.elevation.at(15, 20), 0.914F);         // the pole
+    EXPECT_LT(std::abs(out.elevation.at(8, 8)), 0.01F);  // the hole, from the floor around it
+    EXPECT_TRUE(std::isnan(out.elevation.at(31, 31)));   // no terrain invented inside the patch
+    for (int n = 0; n < 5; ++n) {
+        const float v = out.elevation.at(16 + n, 20);  // the trail: unknown or floor
+        EXPECT_TRUE(std::isnan(v) || v < 0.05F) << n << ": " << v;
+    }
+    // The removed box corner of the test above, unknown = NaN: cas_trail's removed corner is
+    // unknown in T, the surface rule still restores it from the measured box cells.
+    const Maps box = NoisyBox(3.0F);
+    params.Set("h_sum_min", "11");
+    const FilterResult corner = RunFilter(FilterMethod::kCasHybrid, box.h, box.c, params);
+    const auto tol = static_cast<float>(params.cas.surface_tol_m);
+    EXPECT_TRUE(SameBits(corner.elevation.at(29, 19), LowerMedianOfSameHeight(box, 29, 19, tol)));
+}
+
+TEST(CasHybrid, RejectsBadParametersNamingTheField) {
+    FilterParams params;
+    for (const auto& [name, value] : {std::pair{"surface_min", "0"},
+                                      {"surface_min", "226"},
+                                      {"surface_min", "2.5"},
+                                      {"surface_tol_m", "0"},
+                                      {"surface_tol_m", "-0.01"},
+                                      {"surface_tol_m", "nan"},
+                                      {"edge_tol_m", "0"}}) {
+        try {
+            params.Set(name, value);
+            ADD_FAILURE() << name << "=" << value << " accepted";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+        }
+    }
+    const Maps p = NoisyFloor();
+    for (const char* field : {"surface_min", "edge_min"}) {
+        FilterParams bad;  // set directly: Validate (run by every filter) names it
+        (std::string(field) == "surface_min" ? bad.cas.surface_min : bad.cas.edge_min) = 0;
+        try {
+            (void)RunFilter(FilterMethod::kCasHybrid, p.h, p.c, bad);
+            ADD_FAILURE() << field << " 0 accepted";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_THROW((void)RunFilter(FilterMethod::kCasHybrid, p.h, core::MapF(3, 3), FilterParams{}),
+                 InputError);
+    EXPECT_EQ(ParseFilterMethod("cas_hybrid"), FilterMethod::kCasHybrid);
+    EXPECT_EQ(ToString(FilterMethod::kCasHybrid), "cas_hybrid");
+}
+
+}  // namespace
+}  // namespace casmap::mapper
