@@ -52,6 +52,8 @@ const std::vector<PipelineSpec>& AllPipelines() {
          "Eq. 1-6 map, cas_trail's objects at their height, 5 x 5 median elsewhere"},
         {"cas_edge", kPaper, kNone, FilterMethod::kCasEdge,
          "Eq. 1-6 map, median of cas_trail's map; objects and box edges at their height"},
+        {"cas_hybrid", kPaper, kNone, FilterMethod::kCasHybrid,
+         "cas_edge, plus cas_median's surface median for the cells cas_edge leaves at the median"},
         {"kalman", kKalman, kNone, std::nullopt,
          "Kalman fusion of each scan's lowest point per cell (Fankhauser et al.), no filter"},
         {"kalman_median", kKalman, kNone, FilterMethod::kMedian, "Kalman map, 5 x 5 median"},

@@ -212,8 +212,8 @@ const std::vector<std::string>& SweepableParameters() {
 }
 
 const std::vector<std::string>& SweepableFilters() {
-    static const std::vector<std::string> names = {"cas", "cas_trail", "cas_terrain", "cas_median",
-                                                   "cas_edge"};
+    static const std::vector<std::string> names = {"cas",        "cas_trail", "cas_terrain",
+                                                   "cas_median", "cas_edge",  "cas_hybrid"};
     return names;
 }
 

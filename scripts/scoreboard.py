@@ -187,7 +187,7 @@ def terrain_section(terrain):
         and r["filters"][n]["rmse_m"] < r["filters"]["raw"]["rmse_m"] for _, r in cols)]
     lines += ["", "Below the raw map's RMSE on every terrain run: "
               + (", ".join(every) if every else "no pipeline") + "."]
-    shown = [n for n in ["raw", "cas", "cas_trail", "cas_median", "cas_edge", "kalman"]
+    shown = [n for n in ["raw", "cas", "cas_trail", "cas_median", "cas_edge", "cas_hybrid", "kalman"]
              if n in names]
     lines += ["", f"Spikes ({' / '.join(shown)}): " + "; ".join(
         f"{label} " + "/".join(str(r["filters"][n]["spikes"]) if n in r["filters"] else "-"

@@ -1,6 +1,5 @@
-// casmap filter --method cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median|cas_edge
-// --elevation H.tiff
-// [--certainty C.tiff]
+// casmap filter --method METHOD (cas|wiener|average|median|cwm|cas_terrain|cas_trail|
+//               cas_median|cas_edge|cas_hybrid) --elevation H.tiff [--certainty C.tiff]
 //               [--preset NAME] [--set NAME=VALUE]... --out OUT.tiff [--threads N]
 // Filters an elevation map (32-bit float TIFF, metres) with one of the paper's five filters and
 // writes OUT.tiff (32-bit float), OUT.png (colour, legend) and, for cas, OUT_classes.tiff
@@ -120,8 +119,9 @@ void AddFilterCommand(CLI::App& app, CommonOptions& common) {
     auto opt = std::make_shared<FilterOptions>();
     CLI::App* sub =
         app.add_subcommand("filter", "Filter an elevation map: CAS (Eq. 7-10) or a 5x5 baseline");
-    sub->add_option("--method", opt->method,
-                    "cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median|cas_edge")
+    sub->add_option(
+           "--method", opt->method,
+           "cas|wiener|average|median|cwm|cas_terrain|cas_trail|cas_median|cas_edge|cas_hybrid")
         ->required();
     sub->add_option("--elevation", opt->elevation, "elevation map H, 32-bit float TIFF (m)")
         ->required();

@@ -27,6 +27,7 @@ TEST(BenchPipelines, RegistryNamesAreStableAndThePaperFiveComeFirst) {
                                                "cas_trail",
                                                "cas_median",
                                                "cas_edge",
+                                               "cas_hybrid",
                                                "kalman",
                                                "kalman_median",
                                                "shadow",
