@@ -45,6 +45,13 @@ struct SceneObject {
 struct Scene {
     std::string source_path;
     std::vector<SceneObject> objects;
+
+    /// Throws InputError "<source_path>: objects[i].<field> = <value> (<rule>)" for the first
+    /// broken rule: at least one object; names non-empty and unique; box sizes, cylinder radius
+    /// and height in (0, limits::kMaxSceneExtentM]; a mesh with triangles on its vertices; the
+    /// pose finite with its position within +-kMaxSceneExtentM; reflectivity in 0..1.
+    /// io::LoadScene calls it and names the offending key's line:column instead.
+    void Validate() const;
 };
 
 }  // namespace casmap::core

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <thread>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/text.hpp"
 #include "casmap/drivers/scan_codec.hpp"
@@ -24,41 +25,33 @@ constexpr double kSilentLineS = 0.15;  // no ACK and no byte for this long: give
 
 void Sleep(double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); }
 
-void CheckPositive(double v, const char* field) {
-    if (!(v > 0.0)) {
-        throw MakeInputError("LMS 200 driver", field, core::FormatNumber(v), "must be > 0");
-    }
-}
-
 }  // namespace
 
 void DriverConfig::Validate() const {
-    if (device.empty()) {
-        throw MakeInputError("LMS 200 driver", "device", "", "a serial device path is required");
-    }
+    const core::Check check("LMS 200 driver");
+    check.That(!device.empty(), "device", "", "a serial device path is required");
     CheckLmsBaud(baud, "baud");
-    if (variant && !variant->IsValid()) {
-        throw MakeInputError(
-            "LMS 200 driver", "variant",
+    if (variant) {
+        check.That(
+            variant->IsValid(), "variant",
             std::to_string(variant->angle_deg) + "," + std::to_string(variant->resolution_cdeg),
             "180,100 180,50 100,100 100,50 or 100,25 (deg, 1/100 deg)");
     }
-    if (tries < 1) {
-        throw MakeInputError("LMS 200 driver", "tries", std::to_string(tries), ">= 1");
-    }
-    CheckPositive(reply_timeout_s, "reply_timeout_s");
-    CheckPositive(mode_timeout_s, "mode_timeout_s");
-    CheckPositive(quiet_timeout_s, "quiet_timeout_s");
-    CheckPositive(inter_byte_timeout_s, "inter_byte_timeout_s");
-    CheckPositive(sync_window_s, "sync_window_s");
-    CheckPositive(write_timeout_s, "write_timeout_s");
-    CheckPositive(reset_timeout_s, "reset_timeout_s");
-    CheckPositive(idle_confirm_s, "idle_confirm_s");
-    if (password.size() != 8) {
-        throw MakeInputError("LMS 200 driver", "password",
-                             "(" + std::to_string(password.size()) + " characters)",
-                             "exactly 8 characters");
-    }
+    check.That(tries >= 1, "tries", tries, ">= 1");
+    // A NaN timeout would wait forever: every timeout must be a number > 0 (infinity allowed).
+    const auto positive = [&check](const char* field, double v) {
+        check.That(v > 0.0, field, v, "must be > 0");
+    };
+    positive("reply_timeout_s", reply_timeout_s);
+    positive("mode_timeout_s", mode_timeout_s);
+    positive("quiet_timeout_s", quiet_timeout_s);
+    positive("inter_byte_timeout_s", inter_byte_timeout_s);
+    positive("sync_window_s", sync_window_s);
+    positive("write_timeout_s", write_timeout_s);
+    positive("reset_timeout_s", reset_timeout_s);
+    positive("idle_confirm_s", idle_confirm_s);
+    check.That(password.size() == 8, "password",
+               "(" + std::to_string(password.size()) + " characters)", "exactly 8 characters");
     if (variant) {
         output.Validate(*variant);
     } else {  // the sub-range is checked against the device's variant at Connect

@@ -4,31 +4,20 @@
 #include <cmath>
 #include <string>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/text.hpp"
 
 namespace casmap::drivers {
 
 void ScanClockConfig::Validate() const {
-    if (!(period_s > 0.0)) {
-        throw MakeInputError("scan clock", "period_s", core::FormatNumber(period_s), "must be > 0");
-    }
-    if (!(window_s > 0.0)) {
-        throw MakeInputError("scan clock", "window_s", core::FormatNumber(window_s), "must be > 0");
-    }
-    if (!(guard >= 0.0 && guard < 1.0)) {
-        throw MakeInputError("scan clock", "guard", std::to_string(guard), "0 <= guard < 1");
-    }
-    if (!(max_step_s > 0.0)) {
-        throw MakeInputError("scan clock", "max_step_s", core::FormatNumber(max_step_s),
-                             "must be > 0");
-    }
-    if (confirm_scans < 1) {
-        throw MakeInputError("scan clock", "confirm_scans", std::to_string(confirm_scans), ">= 1");
-    }
-    if (warmup_scans < 0) {
-        throw MakeInputError("scan clock", "warmup_scans", std::to_string(warmup_scans), ">= 0");
-    }
+    const core::Check check("scan clock");
+    check.That(period_s > 0.0, "period_s", period_s, "must be > 0");
+    check.That(window_s > 0.0, "window_s", window_s, "must be > 0");
+    check.That(guard >= 0.0 && guard < 1.0, "guard", guard, "0 <= guard < 1");
+    check.That(max_step_s > 0.0, "max_step_s", max_step_s, "must be > 0");
+    check.That(confirm_scans >= 1, "confirm_scans", confirm_scans, ">= 1");
+    check.That(warmup_scans >= 0, "warmup_scans", warmup_scans, ">= 0");
 }
 
 ScanClock::ScanClock(ScanClockConfig config) : config_(config) { config_.Validate(); }

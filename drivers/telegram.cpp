@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/drivers/telegram_detail.hpp"
 
@@ -175,10 +176,8 @@ bool IsLmsBaud(int baud) {
 }
 
 void CheckLmsBaud(int baud, const std::string& field) {
-    if (!IsLmsBaud(baud)) {
-        throw MakeInputError("", field, std::to_string(baud),
-                             "the LMS 200 has 9600, 19200, 38400 or 500000 baud");
-    }
+    core::Check().That(IsLmsBaud(baud), field, baud,
+                       "the LMS 200 has 9600, 19200, 38400 or 500000 baud");
 }
 
 std::uint8_t BaudModeByte(int baud) {

@@ -1,9 +1,9 @@
 #include "casmap/io/scene_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -48,20 +48,6 @@ double ReadNumber(const std::string& file, const YAML::Node& node, const std::st
     return value;
 }
 
-// Sizes and positions beyond this many metres are typos (a scene is a test course, not a
-// continent) and would make the ground-truth grid and the ray caster lose all precision.
-const std::string kExtentRule =
-    "allowed: 0 < size <= " + std::to_string(static_cast<int>(core::limits::kMaxSceneExtentM)) +
-    " m, see docs/limits.md";
-
-double ReadPositive(const std::string& file, const YAML::Node& node, const std::string& field) {
-    const double value = ReadNumber(file, node, field);
-    if (!(value > 0.0 && value <= core::limits::kMaxSceneExtentM)) {
-        throw MakeInputError(Where(file, node), field, Describe(node), kExtentRule);
-    }
-    return value;
-}
-
 // Reads a list of exactly n finite numbers.
 std::vector<double> ReadNumbers(const std::string& file,
                                 const YAML::Node& node,
@@ -90,15 +76,7 @@ core::Shape ReadBox(const std::string& file, const YAML::Node& node, const std::
     if (!node["size_m"]) {
         throw MakeInputError(Where(file, node), field + ".size_m", "", "required key is missing");
     }
-    const std::vector<double> v = ReadNumbers(file, node["size_m"], field + ".size_m", 3);
-    for (std::size_t i = 0; i < 3; ++i) {
-        if (!(v[i] > 0.0 && v[i] <= core::limits::kMaxSceneExtentM)) {
-            throw MakeInputError(Where(file, node["size_m"][i]),
-                                 field + ".size_m[" + std::to_string(i) + "]",
-                                 Describe(node["size_m"][i]), kExtentRule);
-        }
-    }
-    return core::BoxShape{Eigen::Vector3d(v[0], v[1], v[2])};
+    return core::BoxShape{ReadVector3(file, node["size_m"], field + ".size_m")};
 }
 
 core::Shape ReadCylinder(const std::string& file,
@@ -112,8 +90,8 @@ core::Shape ReadCylinder(const std::string& file,
                                  "required key is missing");
         }
     }
-    cylinder.radius_m = ReadPositive(file, node["radius_m"], field + ".radius_m");
-    cylinder.height_m = ReadPositive(file, node["height_m"], field + ".height_m");
+    cylinder.radius_m = ReadNumber(file, node["radius_m"], field + ".radius_m");
+    cylinder.height_m = ReadNumber(file, node["height_m"], field + ".height_m");
     return cylinder;
 }
 
@@ -167,12 +145,6 @@ core::Pose ReadPose(const std::string& file, const YAML::Node& node, const std::
         throw MakeInputError(Where(file, node), field, Describe(node),
                              "must be {xyz_m: [3], rpy_deg: [3]} or a list of 6 numbers");
     }
-    if (xyz.cwiseAbs().maxCoeff() > core::limits::kMaxSceneExtentM) {
-        throw MakeInputError(Where(file, node), field, Describe(node),
-                             "position within +-" +
-                                 std::to_string(static_cast<int>(core::limits::kMaxSceneExtentM)) +
-                                 " m, see docs/limits.md");
-    }
     return core::PoseFromXyzRpy(xyz, rpy_deg * (std::numbers::pi / 180.0));
 }
 
@@ -184,9 +156,6 @@ core::SceneObject ReadObject(const std::string& file,
                        "terrain", "retro_reflective"});
     core::SceneObject object;
     ReadRequired(file, node, field, "name", object.name);
-    if (object.name.empty()) {
-        throw MakeInputError(Where(file, node["name"]), field + ".name", "", "must not be empty");
-    }
     const int shapes = (node["box"] ? 1 : 0) + (node["cylinder"] ? 1 : 0) + (node["mesh"] ? 1 : 0);
     if (shapes != 1) {
         throw MakeInputError(Where(file, node), field, object.name,
@@ -208,14 +177,41 @@ core::SceneObject ReadObject(const std::string& file,
     }
     if (const YAML::Node r = node["reflectivity"]) {
         object.reflectivity = ReadNumber(file, r, field + ".reflectivity");
-        if (!(object.reflectivity >= 0.0 && object.reflectivity <= 1.0)) {
-            throw MakeInputError(Where(file, r), field + ".reflectivity", Describe(r),
-                                 "allowed: 0..1");
-        }
     }
     ReadOptional(file, node, field, "terrain", object.terrain);
     ReadOptional(file, node, field, "retro_reflective", object.retro_reflective);
     return object;
+}
+
+// The node a field path such as "objects[2].box.size_m[1]" names, or the deepest of its
+// parents the file holds (a default value has no node of its own).
+YAML::Node NodeOf(const YAML::Node& root, const std::string& field) {
+    YAML::Node node = root;
+    std::size_t at = 0;
+    while (at < field.size()) {
+        const YAML::Node& here = node;  // const access: looking up never adds a key
+        YAML::Node next;
+        if (field[at] == '[') {
+            const std::size_t close = field.find(']', at);
+            const std::size_t index = std::stoul(field.substr(at + 1, close - at - 1));
+            if (!here.IsSequence() || index >= here.size()) {
+                break;
+            }
+            next = here[index];
+            at = close + 1;
+        } else {
+            at += field[at] == '.' ? 1 : 0;
+            const std::size_t end = std::min(field.find_first_of(".[", at), field.size());
+            const std::string key = field.substr(at, end - at);
+            if (!here.IsMap() || !here[key]) {
+                break;
+            }
+            next = here[key];
+            at = end;
+        }
+        node.reset(next);
+    }
+    return node;
 }
 
 }  // namespace
@@ -227,20 +223,22 @@ core::Scene LoadScene(const std::string& path) {
     if (!objects) {
         throw MakeInputError(Where(path, root), "objects", "", "required key is missing");
     }
-    if (!objects.IsSequence() || objects.size() == 0) {
+    if (!objects.IsSequence()) {
         throw MakeInputError(Where(path, objects), "objects", Describe(objects),
                              "must be a non-empty list");
     }
     core::Scene scene;
     scene.source_path = path;
-    std::set<std::string> names;
     for (std::size_t i = 0; i < objects.size(); ++i) {
-        const std::string field = "objects[" + std::to_string(i) + "]";
-        scene.objects.push_back(ReadObject(path, objects[i], field));
-        if (!names.insert(scene.objects.back().name).second) {
-            throw MakeInputError(Where(path, objects[i]["name"]), field + ".name",
-                                 scene.objects.back().name, "duplicate name");
-        }
+        scene.objects.push_back(ReadObject(path, objects[i], "objects[" + std::to_string(i) + "]"));
+    }
+    try {  // the scene's own rules; the message names the key's line:column and its text
+        scene.Validate();
+    } catch (const InputError& e) {
+        const YAML::Node node = NodeOf(root, e.field());
+        const bool exact = node.IsScalar() || node.IsSequence();
+        throw MakeInputError(Where(path, node), e.field(), exact ? Describe(node) : e.value(),
+                             e.rule());
     }
     return scene;
 }

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/text.hpp"
 #include "casmap/mapper/beam_geometry.hpp"
@@ -29,39 +30,35 @@ double HeadingOf(const core::Pose& p) {
     return std::atan2(r(1, 0), r(0, 0));
 }
 
-void Require(bool ok, const char* field, double value, const std::string& rule) {
-    if (!ok) {
-        throw MakeInputError(kWhere, field, core::FormatNumber(value), rule);
-    }
-}
-
 }  // namespace
 
 void ActiveWindowConfig::Validate() const {
+    const core::Check check(kWhere);
     const int k = cas.k;
-    Require(k >= 1, "cas.k", k, ">= 1");
-    Require(rows >= 2 * k + 2, "rows", rows, ">= 2 k + 2 (room for a filtered row's window)");
-    Require(cols >= 2 * k + 1, "cols", cols, ">= 2 k + 1");
-    Require(m >= k + 1 && m <= rows - k, "m", m,
-            "in [k + 1, rows - k]: the filtered row R - m and its k neighbours lie in the window");
-    Require(std::isfinite(cell_m) && cell_m > 0.0, "cell_m", cell_m, "finite and > 0");
-    Require(std::isfinite(origin_x_m), "origin_x_m", origin_x_m, "finite");
-    Require(std::isfinite(origin_y_m), "origin_y_m", origin_y_m, "finite");
-    Require(std::isfinite(heading_step_rad) && heading_step_rad > 0.0 &&
-                heading_step_rad <= std::numbers::pi / 2.0,
-            "heading_step_rad", heading_step_rad, "in (0, pi/2]");
-    Require(std::isfinite(delta_l_m) && delta_l_m >= 0.0, "delta_l_m", delta_l_m,
-            "finite and >= 0");
-    Require(a >= 1, "a", a, "a positive integer");
-    Require(std::isfinite(scan_period_s) && scan_period_s > 0.0, "scan_period_s", scan_period_s,
-            "finite and > 0");
-    Require(cas.a == a, "cas.a", cas.a, "must equal a (Eq. 8 uses the mapper's increment)");
-    Require(cas.cell_m == cell_m, "cas.cell_m", cas.cell_m, "must equal cell_m (Eq. 8 s)");
-    Require(cas.normalise == Normalise::kWindow, "cas.normalise", 1.0,
-            "window: a whole-map maximum does not exist on a moving window");
-    Require(max_rows_per_scan >= 1, "max_rows_per_scan", max_rows_per_scan, ">= 1");
-    Require(std::isfinite(obstacle_cell_m) && obstacle_cell_m > 0.0, "obstacle_cell_m",
-            obstacle_cell_m, "finite and > 0");
+    check.That(k >= 1, "cas.k", k, ">= 1");
+    check.That(rows >= 2 * k + 2, "rows", rows, ">= 2 k + 2 (room for a filtered row's window)");
+    check.That(cols >= 2 * k + 1, "cols", cols, ">= 2 k + 1");
+    check.That(
+        m >= k + 1 && m <= rows - k, "m", m,
+        "in [k + 1, rows - k]: the filtered row R - m and its k neighbours lie in the window");
+    check.That(std::isfinite(cell_m) && cell_m > 0.0, "cell_m", cell_m, "finite and > 0");
+    check.That(std::isfinite(origin_x_m), "origin_x_m", origin_x_m, "finite");
+    check.That(std::isfinite(origin_y_m), "origin_y_m", origin_y_m, "finite");
+    check.That(std::isfinite(heading_step_rad) && heading_step_rad > 0.0 &&
+                   heading_step_rad <= std::numbers::pi / 2.0,
+               "heading_step_rad", heading_step_rad, "in (0, pi/2]");
+    check.That(std::isfinite(delta_l_m) && delta_l_m >= 0.0, "delta_l_m", delta_l_m,
+               "finite and >= 0");
+    check.That(a >= 1, "a", a, "a positive integer");
+    check.That(std::isfinite(scan_period_s) && scan_period_s > 0.0, "scan_period_s", scan_period_s,
+               "finite and > 0");
+    check.That(cas.a == a, "cas.a", cas.a, "must equal a (Eq. 8 uses the mapper's increment)");
+    check.That(cas.cell_m == cell_m, "cas.cell_m", cas.cell_m, "must equal cell_m (Eq. 8 s)");
+    check.That(cas.normalise == Normalise::kWindow, "cas.normalise", 1.0,
+               "window: a whole-map maximum does not exist on a moving window");
+    check.That(max_rows_per_scan >= 1, "max_rows_per_scan", max_rows_per_scan, ">= 1");
+    check.That(std::isfinite(obstacle_cell_m) && obstacle_cell_m > 0.0, "obstacle_cell_m",
+               obstacle_cell_m, "finite and > 0");
 }
 
 int LookAheadRows(const ActiveWindowConfig& config,

@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/text.hpp"
 
@@ -316,47 +317,43 @@ void FilterParams::SetAssignment(std::string_view assignment) {
 }
 
 void FilterParams::Validate() const {
-    const auto check = [](bool ok, const std::string& name, double v, const std::string& rule) {
-        if (!ok) {
-            throw MakeInputError(kWhere, name, core::FormatNumber(v), rule);
-        }
-    };
-    check(cas.k >= 1 && cas.k <= 7, "k", cas.k, "allowed: integer 1..7");
-    check(cas.a >= 1, "a", cas.a, "allowed: integer >= 1");
-    check(cas.cell_m > 0 && std::isfinite(cas.cell_m), "cell_m", cas.cell_m, "allowed: > 0");
-    check(cas.speed_m_s > 0 && std::isfinite(cas.speed_m_s), "speed_m_s", cas.speed_m_s,
-          "allowed: > 0");
-    check(cas.scan_period_s > 0 && std::isfinite(cas.scan_period_s), "scan_period_s",
-          cas.scan_period_s, "allowed: > 0");
-    check(std::isfinite(cas.EffectiveA()) && cas.EffectiveA() >= 0, "A", cas.EffectiveA(),
-          "allowed: >= 0");
-    check(std::isfinite(cas.EffectiveG()) && cas.EffectiveG() >= 0, "G", cas.EffectiveG(),
-          "allowed: >= 0");
-    check(cas.h_sum_min >= 0, "h_sum_min", cas.h_sum_min, "allowed: >= 0");
-    check(cas.B >= 0, "B", cas.B, "allowed: >= 0");
-    check(cas.E >= 0, "E", cas.E, "allowed: >= 0");
-    check(cas.ground_k >= 1 && cas.ground_k <= 15, "ground_k", cas.ground_k,
-          "allowed: integer 1..15");
-    check(cas.ground_quantile >= 0 && cas.ground_quantile <= 1, "ground_quantile",
-          cas.ground_quantile, "allowed: 0..1");
-    check(cas.support_tol_m > 0 && std::isfinite(cas.support_tol_m), "support_tol_m",
-          cas.support_tol_m, "allowed: > 0");
-    check(cas.support_min >= 1 && cas.support_min <= 48, "support_min", cas.support_min,
-          "allowed: integer 1..48");
-    check(cas.edge_tol_m > 0 && std::isfinite(cas.edge_tol_m), "edge_tol_m", cas.edge_tol_m,
-          "allowed: > 0");
-    check(cas.edge_min >= 1 && cas.edge_min <= 225, "edge_min", cas.edge_min,
-          "allowed: integer 1..225");
-    check(cas.surface_tol_m > 0 && std::isfinite(cas.surface_tol_m), "surface_tol_m",
-          cas.surface_tol_m, "allowed: > 0");
-    check(cas.surface_min >= 1 && cas.surface_min <= 225, "surface_min", cas.surface_min,
-          "allowed: integer 1..225");
-    check(baseline.window >= 3 && baseline.window <= 15 && baseline.window % 2 == 1, "window",
-          baseline.window, "allowed: odd integer 3..15");
-    check(!baseline.noise || (*baseline.noise >= 0 && std::isfinite(*baseline.noise)), "noise",
-          baseline.noise.value_or(0.0), "allowed: >= 0");
-    check(baseline.center_weight >= 1 && baseline.center_weight % 2 == 1, "center_weight",
-          baseline.center_weight, "allowed: odd integer >= 1");
+    const core::Check check(kWhere);
+    check.That(cas.k >= 1 && cas.k <= 7, "k", cas.k, "allowed: integer 1..7");
+    check.That(cas.a >= 1, "a", cas.a, "allowed: integer >= 1");
+    check.That(cas.cell_m > 0 && std::isfinite(cas.cell_m), "cell_m", cas.cell_m, "allowed: > 0");
+    check.That(cas.speed_m_s > 0 && std::isfinite(cas.speed_m_s), "speed_m_s", cas.speed_m_s,
+               "allowed: > 0");
+    check.That(cas.scan_period_s > 0 && std::isfinite(cas.scan_period_s), "scan_period_s",
+               cas.scan_period_s, "allowed: > 0");
+    check.That(std::isfinite(cas.EffectiveA()) && cas.EffectiveA() >= 0, "A", cas.EffectiveA(),
+               "allowed: >= 0");
+    check.That(std::isfinite(cas.EffectiveG()) && cas.EffectiveG() >= 0, "G", cas.EffectiveG(),
+               "allowed: >= 0");
+    check.That(cas.h_sum_min >= 0, "h_sum_min", cas.h_sum_min, "allowed: >= 0");
+    check.That(cas.B >= 0, "B", cas.B, "allowed: >= 0");
+    check.That(cas.E >= 0, "E", cas.E, "allowed: >= 0");
+    check.That(cas.ground_k >= 1 && cas.ground_k <= 15, "ground_k", cas.ground_k,
+               "allowed: integer 1..15");
+    check.That(cas.ground_quantile >= 0 && cas.ground_quantile <= 1, "ground_quantile",
+               cas.ground_quantile, "allowed: 0..1");
+    check.That(cas.support_tol_m > 0 && std::isfinite(cas.support_tol_m), "support_tol_m",
+               cas.support_tol_m, "allowed: > 0");
+    check.That(cas.support_min >= 1 && cas.support_min <= 48, "support_min", cas.support_min,
+               "allowed: integer 1..48");
+    check.That(cas.edge_tol_m > 0 && std::isfinite(cas.edge_tol_m), "edge_tol_m", cas.edge_tol_m,
+               "allowed: > 0");
+    check.That(cas.edge_min >= 1 && cas.edge_min <= 225, "edge_min", cas.edge_min,
+               "allowed: integer 1..225");
+    check.That(cas.surface_tol_m > 0 && std::isfinite(cas.surface_tol_m), "surface_tol_m",
+               cas.surface_tol_m, "allowed: > 0");
+    check.That(cas.surface_min >= 1 && cas.surface_min <= 225, "surface_min", cas.surface_min,
+               "allowed: integer 1..225");
+    check.That(baseline.window >= 3 && baseline.window <= 15 && baseline.window % 2 == 1, "window",
+               baseline.window, "allowed: odd integer 3..15");
+    check.That(!baseline.noise || (*baseline.noise >= 0 && std::isfinite(*baseline.noise)), "noise",
+               baseline.noise.value_or(0.0), "allowed: >= 0");
+    check.That(baseline.center_weight >= 1 && baseline.center_weight % 2 == 1, "center_weight",
+               baseline.center_weight, "allowed: odd integer >= 1");
     shadow.Validate();  // InputError naming shadow.<field>, range_jump.<field>, kalman.<field>
     range_jump.Validate();
     kalman.Validate();

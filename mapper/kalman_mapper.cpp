@@ -5,43 +5,33 @@
 #include <optional>
 #include <string>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/text.hpp"
 
 namespace casmap::mapper {
 namespace {
 
-void Require(bool ok, const std::string& field, double value, const std::string& rule) {
-    if (!ok) {
-        throw MakeInputError("kalman mapper", field, core::FormatNumber(value), rule);
-    }
-}
-
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 }  // namespace
 
 void KalmanNoiseConfig::Validate() const {
-    const auto finite_ge = [](double v, double lo) { return std::isfinite(v) && v >= lo; };
-    Require(finite_ge(range_sigma_m, 0.0), "kalman.range_sigma_m", range_sigma_m, "allowed: >= 0");
-    Require(finite_ge(beam_constant_m, 0.0), "kalman.beam_constant_m", beam_constant_m,
-            "allowed: >= 0");
-    Require(finite_ge(beam_angle_rad, 0.0), "kalman.beam_angle_rad", beam_angle_rad,
-            "allowed: >= 0");
-    Require(finite_ge(min_variance_m2, 0.0) && min_variance_m2 > 0.0, "kalman.min_variance_m2",
-            min_variance_m2, "allowed: > 0");
-    Require(finite_ge(mahalanobis_gate, 0.0) && mahalanobis_gate > 0.0, "kalman.mahalanobis_gate",
-            mahalanobis_gate, "allowed: > 0");
-    Require(finite_ge(multi_height_noise_m2, 0.0), "kalman.multi_height_noise_m2",
-            multi_height_noise_m2, "allowed: >= 0");
+    const core::Check check("kalman mapper", "kalman.");
+    check.NonNegative("range_sigma_m", range_sigma_m, "allowed: >= 0");
+    check.NonNegative("beam_constant_m", beam_constant_m, "allowed: >= 0");
+    check.NonNegative("beam_angle_rad", beam_angle_rad, "allowed: >= 0");
+    check.Positive("min_variance_m2", min_variance_m2, "allowed: > 0");
+    check.Positive("mahalanobis_gate", mahalanobis_gate, "allowed: > 0");
+    check.NonNegative("multi_height_noise_m2", multi_height_noise_m2, "allowed: >= 0");
 }
 
 void KalmanMapperConfig::Validate() const {
+    const core::Check check("kalman mapper", "kalman.");
     grid.Validate();
-    Require(std::isfinite(scan_period_s) && scan_period_s > 0.0, "kalman.scan_period_s",
-            scan_period_s, "allowed: > 0");
+    check.Positive("scan_period_s", scan_period_s, "allowed: > 0");
     KalmanNoiseConfig::Validate();
-    Require(a >= 1, "kalman.a", a, "allowed: integer >= 1");
+    check.That(a >= 1, "a", a, "allowed: integer >= 1");
 }
 
 KalmanMapper::KalmanMapper(const KalmanMapperConfig& config) : config_(config) {

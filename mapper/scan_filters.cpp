@@ -10,6 +10,7 @@
 #include <limits>
 #include <numbers>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/text.hpp"
 
@@ -23,31 +24,27 @@ bool Valid(const core::Scan& scan, std::size_t i) {
            scan.beams[i].range_m > 0.0F;
 }
 
-void Require(bool ok, const std::string& field, double value, const std::string& rule) {
-    if (!ok) {
-        throw MakeInputError("scan filter", field, core::FormatNumber(value), rule);
-    }
-}
-
 }  // namespace
 
 void ShadowFilterConfig::Validate() const {
-    Require(std::isfinite(min_angle_deg) && min_angle_deg > 0.0 && min_angle_deg < 90.0,
-            "shadow.min_angle_deg", min_angle_deg, "allowed: > 0 and < 90");
-    Require(std::isfinite(max_angle_deg) && max_angle_deg > 90.0 && max_angle_deg < 180.0,
-            "shadow.max_angle_deg", max_angle_deg, "allowed: > 90 and < 180");
-    Require(window >= 1 && window <= 10, "shadow.window", window, "allowed: integer 1..10");
-    Require(neighbors >= 0 && neighbors <= 20, "shadow.neighbors", neighbors,
-            "allowed: integer 0..20");
+    const core::Check check("scan filter");
+    check.That(std::isfinite(min_angle_deg) && min_angle_deg > 0.0 && min_angle_deg < 90.0,
+               "shadow.min_angle_deg", min_angle_deg, "allowed: > 0 and < 90");
+    check.That(std::isfinite(max_angle_deg) && max_angle_deg > 90.0 && max_angle_deg < 180.0,
+               "shadow.max_angle_deg", max_angle_deg, "allowed: > 90 and < 180");
+    check.That(window >= 1 && window <= 10, "shadow.window", window, "allowed: integer 1..10");
+    check.That(neighbors >= 0 && neighbors <= 20, "shadow.neighbors", neighbors,
+               "allowed: integer 0..20");
 }
 
 void RangeJumpConfig::Validate() const {
-    Require(std::isfinite(jump_min_m) && jump_min_m > 0.0, "range_jump.jump_min_m", jump_min_m,
-            "allowed: > 0");
-    Require(std::isfinite(margin_m) && margin_m >= 0.0 && 2.0 * margin_m < jump_min_m,
-            "range_jump.margin_m", margin_m, "allowed: >= 0 and < jump_min_m / 2");
-    Require(std::isfinite(chord_tol_m) && chord_tol_m >= 0.0, "range_jump.chord_tol_m", chord_tol_m,
-            "allowed: >= 0");
+    const core::Check check("scan filter");
+    check.That(std::isfinite(jump_min_m) && jump_min_m > 0.0, "range_jump.jump_min_m", jump_min_m,
+               "allowed: > 0");
+    check.That(std::isfinite(margin_m) && margin_m >= 0.0 && 2.0 * margin_m < jump_min_m,
+               "range_jump.margin_m", margin_m, "allowed: >= 0 and < jump_min_m / 2");
+    check.That(std::isfinite(chord_tol_m) && chord_tol_m >= 0.0, "range_jump.chord_tol_m",
+               chord_tol_m, "allowed: >= 0");
 }
 
 std::vector<std::uint8_t> ShadowFilterLabels(const core::Scan& scan,

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/text.hpp"
 #include "casmap/mapper/beam_geometry.hpp"
@@ -18,17 +19,10 @@ using detail::ZRow;
 
 void TerrainMapperConfig::Validate() const {
     grid.Validate();
-    if (!(std::isfinite(delta_l_m) && delta_l_m >= 0.0)) {
-        throw MakeInputError("mapper", "delta_l_m", core::FormatNumber(delta_l_m),
-                             "must be finite and >= 0");
-    }
-    if (a < 1) {
-        throw MakeInputError("mapper", "a", std::to_string(a), "must be a positive integer");
-    }
-    if (!(std::isfinite(scan_period_s) && scan_period_s > 0.0)) {
-        throw MakeInputError("mapper", "scan_period_s", core::FormatNumber(scan_period_s),
-                             "must be finite and > 0");
-    }
+    const core::Check check("mapper");
+    check.NonNegative("delta_l_m", delta_l_m, "must be finite and >= 0");
+    check.That(a >= 1, "a", a, "must be a positive integer");
+    check.Positive("scan_period_s", scan_period_s, "must be finite and > 0");
 }
 
 Eigen::Vector3d BeamToWorld(const core::Pose& world_T_sensor, double angle_rad, double range_m) {

@@ -6,6 +6,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
 #include "casmap/io/atomic_file.hpp"
@@ -38,6 +39,7 @@ const std::vector<std::string>& AllTests() {
 }
 
 void BenchOptions::Validate() const {
+    const core::Check check;
     if (!(courses.empty() && !scenes.empty())) {
         CheckCoursesAndTests(courses, tests);
     }
@@ -45,12 +47,12 @@ void BenchOptions::Validate() const {
     std::set<std::string> names;
     for (const std::string& scene : scenes) {
         if (!fs::is_regular_file(scene)) {
-            throw MakeInputError("", "scenes", scene, "no such scene file");
+            check.Fail("scenes", scene, "no such scene file");
         }
         if (!names.insert(SceneRunStem(scene)).second) {
-            throw MakeInputError("", "scenes", scene,
-                                 "two scenes share the run name " + SceneRunStem(scene) +
-                                     " (runs are named after the file stem)");
+            check.Fail("scenes", scene,
+                       "two scenes share the run name " + SceneRunStem(scene) +
+                           " (runs are named after the file stem)");
         }
     }
     if (!scenes.empty()) {
@@ -58,20 +60,20 @@ void BenchOptions::Validate() const {
         for (const std::string& m : scene_motions) {
             const std::vector<std::string> all = {"T", "TR", "TP", "TRP", "vehicle"};
             if (std::find(all.begin(), all.end(), m) == all.end() || !seen.insert(m).second) {
-                throw MakeInputError("", "scene_motions", m,
-                                     "allowed: T, TR, TP, TRP, vehicle, each at most once");
+                check.Fail("scene_motions", m,
+                           "allowed: T, TR, TP, TRP, vehicle, each at most once");
             }
         }
         if (scene_motions.empty()) {
-            throw MakeInputError("", "scene_motions", "", "at least one motion");
+            check.Fail("scene_motions", "", "at least one motion");
         }
     }
     (void)ResolveBenchSettings(courses_dir, rig_path, sensor_path, seed);
-    mapper::FilterParams check;
+    mapper::FilterParams params;
     for (const std::string& assignment : EffectiveFilterSettings()) {
-        check.SetAssignment(assignment);
+        params.SetAssignment(assignment);
     }
-    check.Validate();
+    params.Validate();
     for (const auto& [pipeline, settings] : PipelineFilterSettings()) {
         mapper::FilterParams one;
         for (const std::string& assignment : settings) {

@@ -7,6 +7,7 @@
 #include <deque>
 #include <thread>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/drivers/lms200_driver.hpp"
 #include "casmap/io/atomic_file.hpp"
@@ -366,17 +367,13 @@ void TrajectoryPoseStream::Poll(std::vector<core::TimedPose>& out) {
 
 void LiveConfig::Validate() const {
     window.Validate();
-    const auto positive = [](double v, const char* field, bool zero_ok) {
-        if (!(std::isfinite(v) && (v > 0.0 || (zero_ok && v == 0.0)))) {
-            throw MakeInputError("live", field, FormatNumber(v), zero_ok ? ">= 0" : "> 0");
-        }
-    };
-    positive(snapshot_every_s, "snapshot_every_s", true);
-    positive(status_every_s, "status_every_s", false);
-    positive(pose_tolerance_s, "pose_tolerance_s", false);
-    positive(pose_wait_s, "pose_wait_s", true);
-    positive(timeout_s, "timeout_s", false);
-    positive(duration_s, "duration_s", true);
+    const core::Check check("live");
+    check.NonNegative("snapshot_every_s", snapshot_every_s, ">= 0");
+    check.Positive("status_every_s", status_every_s, "> 0");
+    check.Positive("pose_tolerance_s", pose_tolerance_s, "> 0");
+    check.NonNegative("pose_wait_s", pose_wait_s, ">= 0");
+    check.Positive("timeout_s", timeout_s, "> 0");
+    check.NonNegative("duration_s", duration_s, ">= 0");
 }
 
 LiveResult RunLive(const LiveConfig& config,

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/text.hpp"
 #include "casmap/drivers/telegram.hpp"
@@ -16,11 +17,6 @@ namespace {
 
 /// The device half: the driver's source and exactly one pose stream.
 void SetUpDevice(const LiveOptions& o, LiveSetup& setup) {
-    drivers::CheckLmsBaud(o.baud, "baud");
-    if (o.poses.empty() == o.poses_socket.empty()) {
-        throw MakeInputError("", "poses / poses_socket", "",
-                             "a scanner needs exactly one pose stream");
-    }
     if (!o.poses.empty()) {
         setup.poses = std::make_unique<drivers::PoseFileFollower>(o.poses);
     } else {
@@ -31,12 +27,27 @@ void SetUpDevice(const LiveOptions& o, LiveSetup& setup) {
 
 }  // namespace
 
-LiveSetup MakeLiveSetup(const LiveOptions& o, int threads) {
-    const bool from_device = !o.device.empty();
-    const bool from_scene = !o.scene.empty() || !o.motion.empty();
-    if (from_device == from_scene) {
-        throw MakeInputError("", "device / scene", "", "give either device or scene and motion");
+void LiveOptions::Validate() const {
+    const core::Check check;
+    const bool from_device = !device.empty();
+    const bool from_scene = !scene.empty() || !motion.empty();
+    check.That(from_device != from_scene, "device / scene", "",
+               "give either device or scene and motion");
+    if (from_device) {
+        drivers::CheckLmsBaud(baud, "baud");
+        check.That(poses.empty() != poses_socket.empty(), "poses / poses_socket", "",
+                   "a scanner needs exactly one pose stream");
+        return;
     }
+    check.That(!scene.empty() && !motion.empty(), "scene / motion", "",
+               "scene and motion go together");
+#ifndef CASMAP_PIPELINE_WITH_SIM
+    check.Fail("scene", scene, "built without the simulator; use device");
+#endif
+}
+
+LiveSetup MakeLiveSetup(const LiveOptions& o, int threads) {
+    o.Validate();
     LiveSetup setup;
     LiveConfig& cfg = setup.config;
     cfg.out_dir = o.out;
@@ -48,17 +59,13 @@ LiveSetup MakeLiveSetup(const LiveOptions& o, int threads) {
     cfg.max_scans = o.scans;
     cfg.timeout_s = o.timeout_s;
     cfg.pose_tolerance_s = o.pose_tolerance_s;
-    if (from_device) {
+    if (!o.device.empty()) {
         SetUpDevice(o, setup);
     } else {
-        if (o.scene.empty() || o.motion.empty()) {
-            throw MakeInputError("", "scene / motion", "", "scene and motion go together");
-        }
 #ifdef CASMAP_PIPELINE_WITH_SIM
         SetUpSimulatedLive(o, threads, setup);
 #else
-        (void)threads;
-        throw MakeInputError("", "scene", o.scene, "built without the simulator; use device");
+        (void)threads;  // unreachable: Validate() rejects a scene in this build
 #endif
     }
     if (o.m != 0) {

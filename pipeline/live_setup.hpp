@@ -43,6 +43,11 @@ struct LiveOptions {
     double timeout_s = 10.0;         ///< connecting, and the longest wait for a scan
     double pose_tolerance_s = 0.05;  ///< largest pose gap a scan may span
     std::vector<std::string> cas;    ///< CAS parameters NAME=VALUE (mapper::FilterParams)
+
+    /// The source's checks (one source; a scanner with one pose stream and an LMS baud; a scene
+    /// with a motion, in simulator builds only): InputError naming the field, no `where`. The
+    /// session's numbers are checked by LiveConfig::Validate() inside MakeLiveSetup.
+    void Validate() const;
 };
 
 /// What RunLive takes: the configuration, the scans and the poses.

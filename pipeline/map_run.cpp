@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/lms200.hpp"
 #include "casmap/core/text.hpp"
@@ -75,13 +76,9 @@ std::string_view ToString(Prefilter prefilter) {
 }
 
 void MapSettings::Validate() const {
-    if (a < 1) {
-        throw MakeInputError("", "a", std::to_string(a), "allowed: integer >= 1");
-    }
-    if (!(delta_l_m >= 0.0) || !std::isfinite(delta_l_m)) {
-        throw MakeInputError("", "delta_l_m", FormatNumber(delta_l_m),
-                             "allowed: finite number >= 0");
-    }
+    const core::Check check;
+    check.That(a >= 1, "a", a, "allowed: integer >= 1");
+    check.NonNegative("delta_l_m", delta_l_m, "allowed: finite number >= 0");
     shadow.Validate();
     range_jump.Validate();
     kalman.Validate();

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
 #include "casmap/core/pose.hpp"
@@ -87,41 +88,26 @@ std::string SensorJson(const MixedPixelsOptions& o, const sensor_models::Lms200C
 
 }  // namespace
 
-void ValidateMixedPixelsOptions(const MixedPixelsOptions& o) {
-    const auto bad = [](const std::string& field, double v, const std::string& rule) {
-        std::ostringstream s;
-        s << v;
-        return MakeInputError("", field, s.str(), rule);
-    };
-    if (!(o.from_m > 0.0)) {
-        throw bad("from_m", o.from_m, "must be > 0");
-    }
-    if (!(o.to_m >= o.from_m)) {
-        throw bad("to_m", o.to_m, "must be >= from_m");
-    }
-    if (!(o.step_m > 0.0)) {
-        throw bad("step_m", o.step_m, "must be > 0");
-    }
+void MixedPixelsOptions::Validate() const {
+    const core::Check check;
+    check.That(from_m > 0.0, "from_m", from_m, "must be > 0");
+    check.That(to_m >= from_m, "to_m", to_m, "must be >= from_m");
+    check.That(step_m > 0.0, "step_m", step_m, "must be > 0");
     // Bounds the result table and the run time (docs/limits.md): Fig. 3 has 24 gaps.
     constexpr double kMaxGaps = 10000.0;
-    if (!std::isfinite(o.to_m) || (o.to_m - o.from_m) / o.step_m > kMaxGaps) {
-        throw bad("step_m", o.step_m, "more than 10000 gaps from from_m to to_m");
-    }
-    if (o.readings <= 0 || o.readings > 1000000) {
-        throw bad("readings", o.readings, "allowed: 1..1000000");
-    }
-    if (!(o.foreground_m > 0.3 && o.foreground_m < 8.0)) {
-        throw bad("foreground_m", o.foreground_m, "allowed: 0.3 < x < 8 (the 8 m mode)");
-    }
-    if (!(o.reflectivity > 0.0 && o.reflectivity <= 1.0)) {
-        throw bad("reflectivity", o.reflectivity, "allowed: 0 < x <= 1");
-    }
+    check.That(std::isfinite(to_m) && (to_m - from_m) / step_m <= kMaxGaps, "step_m", step_m,
+               "more than 10000 gaps from from_m to to_m");
+    check.That(readings > 0 && readings <= 1000000, "readings", readings, "allowed: 1..1000000");
+    check.That(foreground_m > 0.3 && foreground_m < 8.0, "foreground_m", foreground_m,
+               "allowed: 0.3 < x < 8 (the 8 m mode)");
+    check.That(reflectivity > 0.0 && reflectivity <= 1.0, "reflectivity", reflectivity,
+               "allowed: 0 < x <= 1");
 }
 
 MixedPixelsResult RunMixedPixels(const MixedPixelsOptions& o,
                                  int threads,
                                  const core::ProgressFn& progress) {
-    ValidateMixedPixelsOptions(o);
+    o.Validate();
     const sensor_models::Lms200Model model(
         o.sensor_file.empty() ? sensor_models::Lms200Config{} : io::LoadLms200Config(o.sensor_file),
         o.seed);

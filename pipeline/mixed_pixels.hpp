@@ -28,6 +28,9 @@ struct MixedPixelsOptions {
     double reflectivity = 0.5;  ///< of both surfaces
     std::uint64_t seed = 0;
     std::string sensor_file;  ///< LMS 200 YAML; empty: the built-in config
+
+    /// InputError (no `where`, the field named as here) for a bad option.
+    void Validate() const;
 };
 
 struct MixedPixelsGap {
@@ -40,9 +43,6 @@ struct MixedPixelsResult {
     sensor_models::Lms200Config sensor;  ///< the config used
     std::vector<MixedPixelsGap> gaps;    ///< one per Delta D, ascending
 };
-
-/// InputError (no `where`, the field named as in MixedPixelsOptions) for a bad option.
-void ValidateMixedPixelsOptions(const MixedPixelsOptions& options);
 
 /// Validates, loads the sensor file (if any) and runs every gap on `threads` threads (0: all
 /// cores); the result does not depend on the thread count. `progress` counts gaps.

@@ -11,7 +11,9 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <vector>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/text.hpp"
 #include "casmap/drivers/partial_scans.hpp"
@@ -27,60 +29,43 @@ using Clock = std::chrono::steady_clock;
 
 /// "180,1" / "180,0.5" / "100,0.25" (degrees) -> Variant; InputError otherwise.
 drivers::Variant ParseVariant(const std::string& text) {
-    const std::string rule = "ANGLE,RES_DEG: 180,1 180,0.5 100,1 100,0.5 or 100,0.25";
-    const std::size_t comma = text.find(',');
-    try {
-        if (comma == std::string::npos) {
-            throw std::invalid_argument(text);
+    const std::optional<std::vector<double>> numbers = core::ParseNumberList(text, 2);
+    if (numbers) {
+        const double angle = (*numbers)[0];
+        const double res = (*numbers)[1];
+        if (angle >= 0.0 && angle <= 1000.0 && res >= 0.0 && res <= 10.0) {
+            const drivers::Variant v{static_cast<std::uint16_t>(std::lround(angle)),
+                                     static_cast<std::uint16_t>(std::lround(res * 100.0))};
+            if (v.IsValid() && angle == v.angle_deg &&
+                std::abs(res * 100.0 - v.resolution_cdeg) < 1e-6) {
+                return v;
+            }
         }
-        std::size_t used = 0;
-        const int angle = std::stoi(text.substr(0, comma), &used);
-        const std::string res_text = text.substr(comma + 1);
-        const double res = std::stod(res_text, &used);
-        if (used != res_text.size()) {
-            throw std::invalid_argument(text);
-        }
-        const drivers::Variant v{static_cast<std::uint16_t>(angle),
-                                 static_cast<std::uint16_t>(std::lround(res * 100.0))};
-        if (v.IsValid() && std::abs(res * 100.0 - v.resolution_cdeg) < 1e-6) {
-            return v;
-        }
-    } catch (const std::logic_error&) {
-        // falls through to the error below
     }
-    throw MakeInputError("", "variant", text, rule);
+    throw MakeInputError("", "variant", text,
+                         "ANGLE,RES_DEG: 180,1 180,0.5 100,1 100,0.5 or 100,0.25");
 }
 
 /// Everything checked before the scanner is touched (issue #13 item 2).
 }  // namespace
 
-void CheckRecordOptions(const RecordOptions& opt) {
-    io::CheckOutputPath(opt.out, "out");
-    if (!(opt.timeout_s > 0.0) || !std::isfinite(opt.timeout_s)) {
-        throw MakeInputError("", "timeout_s", core::FormatNumber(opt.timeout_s),
-                             "a finite number of seconds > 0");
-    }
-    if (!(opt.duration_s >= 0.0) || !std::isfinite(opt.duration_s)) {
-        throw MakeInputError("", "duration_s", core::FormatNumber(opt.duration_s),
-                             "a finite number of seconds >= 0");
-    }
-    if (!opt.poses.empty()) {
+void RecordOptions::Validate() const {
+    io::CheckOutputPath(out, "out");
+    const core::Check check;
+    check.Positive("timeout_s", timeout_s, "a finite number of seconds > 0");
+    check.NonNegative("duration_s", duration_s, "a finite number of seconds >= 0");
+    if (!poses.empty()) {
         // `casmap serve --poses-out` may write the file only once streaming began: it may be
         // missing now, but then its folder must exist; if it exists it must be a file.
-        const fs::path p(opt.poses);
+        const core::Check file(poses);
+        const fs::path p(poses);
         if (fs::exists(p)) {
-            if (!fs::is_regular_file(p)) {
-                throw MakeInputError(opt.poses, "poses", opt.poses, "is not a regular file");
-            }
-            if (access(p.c_str(), R_OK) != 0) {
-                throw MakeInputError(opt.poses, "poses", opt.poses, "is not readable");
-            }
+            file.That(fs::is_regular_file(p), "poses", poses, "is not a regular file");
+            file.That(access(p.c_str(), R_OK) == 0, "poses", poses, "is not readable");
         } else {
             const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-            if (!fs::is_directory(dir)) {
-                throw MakeInputError(opt.poses, "poses", opt.poses,
-                                     "neither the file nor its folder exists");
-            }
+            file.That(fs::is_directory(dir), "poses", poses,
+                      "neither the file nor its folder exists");
         }
     }
 }
@@ -209,7 +194,7 @@ void SaveRun(const RecordOptions& opt, io::RunData& run) {
 void Record(const RecordOptions& opt,
             const std::function<bool()>& stop_requested,
             const std::function<void(const RecordStats&)>& report) {
-    CheckRecordOptions(opt);
+    opt.Validate();
     io::RunData run;
     drivers::Lms200Driver driver(DriverConfigOf(opt));
     const int attempts = ConnectWithRetry(driver, opt, stop_requested);

@@ -26,6 +26,10 @@ struct RecordOptions {
     std::string stamps = "scan-clock";  ///< or "arrival"
     std::string mode = "continuous";    ///< drivers::ParseOutputMode's syntax
     bool realtime_indices = false;
+
+    /// Every check done before the scanner is touched: InputErrors naming the field ("out",
+    /// "timeout_s", ...; `where` is the file for out/poses, empty otherwise).
+    void Validate() const;
 };
 
 /// What the recording received, reported before the run file is written.
@@ -36,12 +40,8 @@ struct RecordStats {
     double scans_per_second = 0.0;  ///< (scans - 1) / (last - first arrival); 0 if < 2 scans
 };
 
-/// Every check done before the scanner is touched: InputErrors naming the options field
-/// ("out", "timeout_s", ...; `where` is the file for out/poses, empty otherwise).
-void CheckRecordOptions(const RecordOptions& options);
-
-/// Records, calls `report` (if set) once recording ended, then writes the run file (or, if
-/// `out` fails, a rescue file in the system's temporary folder named in the error).
+/// Validates `options`, records, calls `report` (if set) once recording ended, then writes the run
+/// file (or, if `out` fails, a rescue file in the system's temporary folder named in the error).
 /// `stop_requested` (if set) is polled about every 0.2 s. Throws after writing what was
 /// received when no scan came for `timeout_s`, or when nothing was received.
 void Record(const RecordOptions& options,

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/drivers/pose_file.hpp"
 #include "casmap/drivers/scan_list_source.hpp"
@@ -91,26 +92,24 @@ private:
 
 }  // namespace
 
-void CheckServeOptions(const ServeOptions& o) {
-    const bool from_run = !o.run.empty();
-    const bool from_scene = !o.scene.empty() || !o.motion.empty();
-    if (from_run == from_scene) {
-        throw MakeInputError("", "run / scene", "", "give either run or scene and motion");
+void ServeOptions::Validate() const {
+    const core::Check check;
+    const bool from_run = !run.empty();
+    const bool from_scene = !scene.empty() || !motion.empty();
+    check.That(from_run != from_scene, "run / scene", "", "give either run or scene and motion");
+    check.That(!from_scene || (!scene.empty() && !motion.empty()), "scene / motion", "",
+               "scene and motion go together");
+    drivers::CheckLmsBaud(baud, "baud");
+    if (!faults.empty()) {
+        (void)drivers::ParseFaults(faults);
     }
-    if (from_scene && (o.scene.empty() || o.motion.empty())) {
-        throw MakeInputError("", "scene / motion", "", "scene and motion go together");
+    if (!poses_out.empty()) {
+        io::CheckOutputPath(poses_out, "poses_out");
     }
-    drivers::CheckLmsBaud(o.baud, "baud");
-    if (!o.faults.empty()) {
-        (void)drivers::ParseFaults(o.faults);
-    }
-    if (!o.poses_out.empty()) {
-        io::CheckOutputPath(o.poses_out, "poses_out");
-    }
-    if (!o.eeprom.empty()) {
-        io::CheckOutputPath(o.eeprom, "eeprom");
-        if (std::filesystem::exists(o.eeprom)) {
-            (void)drivers::ReadEepromFile(o.eeprom);  // a broken file fails before serving
+    if (!eeprom.empty()) {
+        io::CheckOutputPath(eeprom, "eeprom");
+        if (std::filesystem::exists(eeprom)) {
+            (void)drivers::ReadEepromFile(eeprom);  // a broken file fails before serving
         }
     }
 }
@@ -119,7 +118,7 @@ ServeResult Serve(const ServeOptions& o,
                   int threads,
                   const std::atomic<bool>& stop,
                   const std::function<void(const ServeStarted&)>& on_started) {
-    CheckServeOptions(o);
+    o.Validate();
     drivers::VirtualLms200Config vc;
     vc.link_path = o.link;
     vc.power_on_baud = o.baud;

@@ -31,6 +31,10 @@ struct ServeOptions {
     std::string faults;  ///< drivers::ParseFaults: "crc=P,garbage=P,drop=P,collide=P,disconnect=S"
     std::string poses_out;  ///< pose file to write; empty: none
     std::string eeprom;     ///< file keeping the scanner's configuration (0x77) across restarts
+
+    /// Every check done before anything is loaded or served: InputErrors naming the field
+    /// ("run / scene", "baud", "faults", "poses_out", "eeprom"; output files as their `where`).
+    void Validate() const;
 };
 
 /// What is served, once the pseudo-terminal exists.
@@ -39,10 +43,6 @@ struct ServeStarted {
     std::size_t scans = 0;
     drivers::Variant variant;
 };
-
-/// Every check done before anything is loaded or served: InputErrors naming the options field
-/// ("run / scene", "baud", "faults", "poses_out", "eeprom"; output files as their `where`).
-void CheckServeOptions(const ServeOptions& options);
 
 struct ServeResult {
     drivers::VirtualLms200Stats stats;

@@ -8,7 +8,9 @@
 #include <optional>
 #include <set>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/pipeline/bench_pipelines.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
 #include "casmap/pipeline/sweep_detail.hpp"
@@ -56,17 +58,11 @@ void CheckStageAxis(const SweepOptions& opt, const std::string& name) {
 double ParseNumber(const std::string& text,
                    const std::string& assignment,
                    const std::string& field) {
-    std::size_t used = 0;
-    double v = 0.0;
-    try {
-        v = std::stod(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used != text.size() || text.empty() || !std::isfinite(v)) {
+    const std::optional<double> v = core::ParseFiniteDouble(text);
+    if (!v) {
         throw MakeInputError("", field, assignment, "FROM, TO and STEP must be numbers");
     }
-    return v;
+    return *v;
 }
 
 bool IsSweepable(const std::string& name) {
@@ -174,11 +170,7 @@ void CheckAxisValue(const SweepOptions& opt, const std::string& name, double v) 
     }
 }
 
-double Snap(double v) {
-    char buf[40];
-    std::snprintf(buf, sizeof(buf), "%.12g", v);
-    return std::stod(buf);
-}
+double Snap(double v) { return core::ParseFiniteDouble(core::FormatNumber(v, 12)).value_or(v); }
 
 bool AxisValueAllowed(const SweepOptions& opt, const std::string& name, double value) {
     try {
@@ -228,15 +220,13 @@ SweepAxis ParseSweepAxis(const std::string& assignment, const std::string& field
     if (!IsSweepable(axis.name)) {
         throw MakeInputError("", field, axis.name, Allowed());
     }
-    const std::string range = assignment.substr(eq + 1);
-    const std::size_t c1 = range.find(':');
-    const std::size_t c2 = c1 == std::string::npos ? c1 : range.find(':', c1 + 1);
-    if (c2 == std::string::npos || range.find(':', c2 + 1) != std::string::npos) {
+    const std::vector<std::string> range = core::SplitList(assignment.substr(eq + 1), ':');
+    if (range.size() != 3) {
         throw MakeInputError("", field, assignment, rule);
     }
-    const double from = ParseNumber(range.substr(0, c1), assignment, field);
-    const double to = ParseNumber(range.substr(c1 + 1, c2 - c1 - 1), assignment, field);
-    const double step = ParseNumber(range.substr(c2 + 1), assignment, field);
+    const double from = ParseNumber(range[0], assignment, field);
+    const double to = ParseNumber(range[1], assignment, field);
+    const double step = ParseNumber(range[2], assignment, field);
     if (!(step > 0.0)) {
         throw MakeInputError("", field, assignment, "STEP must be > 0 (" + rule + ")");
     }
@@ -255,10 +245,11 @@ SweepAxis ParseSweepAxis(const std::string& assignment, const std::string& field
 
 std::vector<std::uint64_t> ParseSeeds(const std::string& text, const std::string& field) {
     std::set<std::uint64_t> seeds;
-    std::size_t pos = 0;
-    while (pos <= text.size()) {
-        const std::size_t comma = std::min(text.find(',', pos), text.size());
-        const std::string part = text.substr(pos, comma - pos);
+    const std::vector<std::string> parts = core::SplitList(text);
+    if (parts.empty()) {
+        (void)ParseSeed(text, text, field);  // throws: no seed given
+    }
+    for (const std::string& part : parts) {
         const std::size_t dash = part.find('-');
         if (dash == std::string::npos) {
             seeds.insert(ParseSeed(part, text, field));
@@ -273,7 +264,6 @@ std::vector<std::uint64_t> ParseSeeds(const std::string& text, const std::string
                 seeds.insert(s);
             }
         }
-        pos = comma + 1;
     }
     return {seeds.begin(), seeds.end()};
 }
@@ -283,25 +273,26 @@ std::vector<std::uint64_t> SweepOptions::TrainSeeds() const {
 }
 
 void SweepOptions::Validate() const {
+    const core::Check check;
     try {
         (void)FindPipeline(filter, "filter");
     } catch (const InputError& e) {
-        throw MakeInputError("", "filter", filter,
-                             "allowed: a bench pipeline name (cas, cas_trail, cas_terrain, "
-                             "range_jump_cas, ...; casmap bench --pipelines)");
+        check.Fail("filter", filter,
+                   "allowed: a bench pipeline name (cas, cas_trail, cas_terrain, "
+                   "range_jump_cas, ...; casmap bench --pipelines)");
     }
     for (std::size_t i = 0; i < axes.size(); ++i) {
         const SweepAxis& axis = axes[i];
         if (!IsSweepable(axis.name)) {
-            throw MakeInputError("", "axes", axis.name, Allowed());
+            check.Fail("axes", axis.name, Allowed());
         }
         if (axis.values.empty()) {
-            throw MakeInputError("", "axes", axis.name, "at least one value");
+            check.Fail("axes", axis.name, "at least one value");
         }
         CheckStageAxis(*this, axis.name);
         for (std::size_t j = 0; j < i; ++j) {
             if (axes[j].name == axis.name) {
-                throw MakeInputError("", "axes", axis.name, "parameter given twice");
+                check.Fail("axes", axis.name, "parameter given twice");
             }
         }
         for (const double v : axis.values) {
@@ -311,17 +302,17 @@ void SweepOptions::Validate() const {
         }
     }
     if (search != "grid" && search != "descent") {
-        throw MakeInputError("", "search", search, "allowed: grid, descent");
+        check.Fail("search", search, "allowed: grid, descent");
     }
     if (grow < 0 || grow > kMaxGrowRounds) {
-        throw MakeInputError("", "grow", std::to_string(grow), "allowed: 0..20 rounds");
+        check.Fail("grow", std::to_string(grow), "allowed: 0..20 rounds");
     }
     CheckCoursesAndTests(courses, tests);
     if (!test_courses.empty()) {
         try {
             CheckCoursesAndTests(test_courses, tests);
         } catch (const InputError& e) {
-            throw MakeInputError("", "test_courses", "", e.what());
+            check.Fail("test_courses", "", e.what());
         }
     }
     const std::vector<std::uint64_t> train = TrainSeeds();
@@ -332,8 +323,8 @@ void SweepOptions::Validate() const {
             for (const int c : held_courses) {
                 if (std::find(train.begin(), train.end(), s) != train.end() &&
                     std::find(courses.begin(), courses.end(), c) != courses.end()) {
-                    throw MakeInputError(
-                        "", test_seeds.empty() ? "test_courses" : "test_seeds",
+                    check.Fail(
+                        test_seeds.empty() ? "test_courses" : "test_seeds",
                         "seed " + std::to_string(s) + ", course " + std::to_string(c),
                         "a held-out run must not be a training run (give other seeds or courses)");
                 }
@@ -343,11 +334,11 @@ void SweepOptions::Validate() const {
     const BenchSettings settings = ResolveBenchSettings(courses_dir, rig_path, sensor_path, seed);
     (void)detail::Setups(*this, settings, SortedTests(tests));
     for (const auto& p : detail::GridPoints(axes)) {
-        mapper::FilterParams check;
+        mapper::FilterParams params;
         for (const std::string& o : detail::PointOverrides(*this, p)) {
-            check.SetAssignment(o);
+            params.SetAssignment(o);
         }
-        check.Validate();
+        params.Validate();
     }
 }
 

@@ -4,6 +4,8 @@
 #include <numbers>
 #include <random>
 
+#include "casmap/core/check.hpp"
+
 namespace casmap::rig {
 
 namespace {
@@ -44,37 +46,19 @@ private:
 
 }  // namespace
 
-std::optional<ConfigViolation> PoseErrorConfig::FirstViolation() const {
-    struct Rule {
-        const char* field;
-        double value;
-    };
-    const Rule rules[] = {
-        {"pose_error.position_random_walk_m_per_sqrt_s", position_random_walk_m_per_sqrt_s},
-        {"pose_error.attitude_random_walk_deg_per_sqrt_s", attitude_random_walk_deg_per_sqrt_s},
-        {"pose_error.position_jitter_m", position_jitter_m},
-        {"pose_error.attitude_jitter_deg", attitude_jitter_deg},
-    };
-    for (const Rule& r : rules) {
-        if (!(r.value >= 0.0) || !std::isfinite(r.value)) {
-            return ConfigViolation{r.field, FormatNumber(r.value), "must be finite and >= 0"};
-        }
-    }
-    for (int i = 0; i < 3; ++i) {
-        if (!std::isfinite(position_bias_m[i])) {
-            return ConfigViolation{"pose_error.position_bias_m", FormatNumber(position_bias_m[i]),
-                                   "must be finite"};
-        }
-        if (!(std::abs(attitude_bias_deg[i]) <= 90.0)) {
-            return ConfigViolation{"pose_error.attitude_bias_deg",
-                                   FormatNumber(attitude_bias_deg[i]), "allowed: -90..90 deg"};
-        }
-    }
-    return std::nullopt;
-}
-
 void PoseErrorConfig::Validate(const std::string& where) const {
-    ThrowIfViolated(FirstViolation(), where);
+    const core::Check check(where, "pose_error.");
+    const char* const rule = "must be finite and >= 0";
+    check.NonNegative("position_random_walk_m_per_sqrt_s", position_random_walk_m_per_sqrt_s, rule);
+    check.NonNegative("attitude_random_walk_deg_per_sqrt_s", attitude_random_walk_deg_per_sqrt_s,
+                      rule);
+    check.NonNegative("position_jitter_m", position_jitter_m, rule);
+    check.NonNegative("attitude_jitter_deg", attitude_jitter_deg, rule);
+    for (int i = 0; i < 3; ++i) {
+        check.Finite("position_bias_m", position_bias_m[i]);
+        check.That(std::abs(attitude_bias_deg[i]) <= 90.0, "attitude_bias_deg",
+                   attitude_bias_deg[i], "allowed: -90..90 deg");
+    }
 }
 
 core::Trajectory ApplyPoseError(const core::Trajectory& truth, const PoseErrorConfig& config) {

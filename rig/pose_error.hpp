@@ -9,7 +9,6 @@
 #include <string>
 
 #include "casmap/core/trajectory.hpp"
-#include "casmap/rig/config_violation.hpp"
 
 namespace casmap::rig {
 
@@ -31,10 +30,6 @@ struct PoseErrorConfig {
     /// "[<where>: ]pose_error.<key> = <value> (<rule>)" for the first broken rule; io's rig loader
     /// puts the key's file:line:col in front instead.
     void Validate(const std::string& where = "") const;
-
-private:
-    // The first broken rule; Validate() throws it (an implementation detail, not an API).
-    [[nodiscard]] std::optional<ConfigViolation> FirstViolation() const;
 };
 
 /// The poses the mapper sees: `truth` with the seeded error added (a copy if disabled).

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "casmap/core/trajectory.hpp"
-#include "casmap/rig/config_violation.hpp"
 #include "casmap/rig/profile.hpp"
 #include "casmap/rig/table_kinematics.hpp"
 
@@ -70,10 +69,6 @@ struct TableConfig {
     /// "[<where>: ]table.<key> = <value> (<rule>)" for the first broken rule; io's rig loader puts
     /// the key's file:line:col in front instead.
     void Validate(const std::string& where = "") const;
-
-private:
-    // The first broken rule; Validate() throws it (an implementation detail, not an API).
-    [[nodiscard]] std::optional<ConfigViolation> FirstViolation() const;
 };
 
 /// The joint commands of a motion (centre, amplitude, ...): T and TR hold mount_pitch_deg,

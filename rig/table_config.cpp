@@ -4,8 +4,10 @@
 #include <limits>
 #include <numbers>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/limits.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/rig/table.hpp"
 
 namespace casmap::rig {
@@ -14,149 +16,93 @@ namespace {
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
 
-std::optional<ConfigViolation> Check(bool ok,
-                                     const std::string& field,
-                                     double value,
-                                     const std::string& rule) {
-    if (ok && std::isfinite(value)) {
-        return std::nullopt;
-    }
-    return ConfigViolation{field, FormatNumber(value), rule};
-}
-
 /// Rules shared by both rotary profiles: period, amplitude, rate limit, range.
-std::optional<ConfigViolation> CheckProfile(const AngleProfile& p,
-                                            const std::string& field,
-                                            double min_deg,
-                                            double max_deg) {
-    if (auto v = Check(p.period_s > 0.0, field + ".period_s", p.period_s, "must be > 0")) {
-        return v;
-    }
-    if (auto v = Check(p.amplitude_deg >= 0.0, field + ".amplitude_deg", p.amplitude_deg,
-                       "must be >= 0")) {
-        return v;
-    }
-    if (auto v = Check(std::isfinite(p.phase_deg), field + ".phase_deg", p.phase_deg,
-                       "must be finite")) {
-        return v;
-    }
+void CheckProfile(const core::Check& check,
+                  const AngleProfile& p,
+                  const std::string& field,
+                  double min_deg,
+                  double max_deg) {
+    check.Positive(field + ".period_s", p.period_s);
+    check.NonNegative(field + ".amplitude_deg", p.amplitude_deg);
+    check.Finite(field + ".phase_deg", p.phase_deg);
     const std::string range =
-        "allowed: " + FormatNumber(min_deg) + ".." + FormatNumber(max_deg) + " deg";
-    if (auto v = Check(p.center_deg >= min_deg && p.center_deg <= max_deg, field + ".center_deg",
-                       p.center_deg, range)) {
-        return v;
-    }
-    if (auto v = Check(
-            p.center_deg - p.amplitude_deg >= min_deg && p.center_deg + p.amplitude_deg <= max_deg,
-            field + ".amplitude_deg", p.amplitude_deg,
-            range + " (centre " + FormatNumber(p.center_deg) + ")")) {
-        return v;
-    }
+        "allowed: " + core::FormatNumber(min_deg) + ".." + core::FormatNumber(max_deg) + " deg";
+    check.That(p.center_deg >= min_deg && p.center_deg <= max_deg, field + ".center_deg",
+               p.center_deg, range);
+    check.That(
+        p.center_deg - p.amplitude_deg >= min_deg && p.center_deg + p.amplitude_deg <= max_deg,
+        field + ".amplitude_deg", p.amplitude_deg,
+        range + " (centre " + core::FormatNumber(p.center_deg) + ")");
     const double rate = PeakRateDegS(p);
-    if (rate > TableLimits::kMaxRateDegS) {
-        return ConfigViolation{field + ".period_s", FormatNumber(p.period_s),
-                               "peak rate " + FormatNumber(rate) + " deg/s exceeds the " +
-                                   FormatNumber(TableLimits::kMaxRateDegS) + " deg/s limit"};
-    }
-    return std::nullopt;
+    check.That(rate <= TableLimits::kMaxRateDegS, field + ".period_s", p.period_s,
+               "peak rate " + core::FormatNumber(rate) + " deg/s exceeds the " +
+                   core::FormatNumber(TableLimits::kMaxRateDegS) + " deg/s limit");
 }
 
-std::optional<ConfigViolation> CheckCourse(const CourseConfig& c) {
-    if (auto v = Check(std::isfinite(c.start_x_m), "table.course.start_x_m", c.start_x_m,
-                       "must be finite")) {
-        return v;
-    }
-    if (auto v = Check(c.end_x_m > c.start_x_m, "table.course.end_x_m", c.end_x_m,
-                       "must be > course.start_x_m")) {
-        return v;
-    }
-    if (auto v = Check(std::abs(c.lateral_offset_m) < 100.0, "table.course.lateral_offset_m",
-                       c.lateral_offset_m, "must be finite, |y| < 100 m")) {
-        return v;
-    }
-    if (auto v =
-            Check(c.end_x_m - c.start_x_m <= core::limits::kMaxCourseLengthM,
-                  "table.course.end_x_m", c.end_x_m,
-                  "course length end_x_m - start_x_m limit " +
-                      FormatNumber(core::limits::kMaxCourseLengthM) + " m, see docs/limits.md")) {
-        return v;
-    }
-    return Check(c.width_m > 0.0 && c.width_m <= core::limits::kMaxCourseLengthM,
-                 "table.course.width_m", c.width_m,
-                 "allowed: 0 < w <= " + FormatNumber(core::limits::kMaxCourseLengthM) + " m");
+void CheckCourse(const core::Check& check, const CourseConfig& c) {
+    const double max_length_m = core::limits::kMaxCourseLengthM;
+    check.Finite("table.course.start_x_m", c.start_x_m);
+    check.That(c.end_x_m > c.start_x_m && std::isfinite(c.end_x_m), "table.course.end_x_m",
+               c.end_x_m, "must be > course.start_x_m");
+    check.That(std::abs(c.lateral_offset_m) < 100.0, "table.course.lateral_offset_m",
+               c.lateral_offset_m, "must be finite, |y| < 100 m");
+    check.That(c.end_x_m - c.start_x_m <= max_length_m, "table.course.end_x_m", c.end_x_m,
+               "course length end_x_m - start_x_m limit " + core::FormatNumber(max_length_m) +
+                   " m, see docs/limits.md");
+    check.That(c.width_m > 0.0 && c.width_m <= max_length_m, "table.course.width_m", c.width_m,
+               "allowed: 0 < w <= " + core::FormatNumber(max_length_m) + " m");
 }
 
 // The run's length in time and in poses bounds what the rig allocates (docs/limits.md).
-std::optional<ConfigViolation> CheckRunSize(const TableConfig& c) {
+void CheckRunSize(const core::Check& check, const TableConfig& c) {
     const double duration_s =
         (c.course.end_x_m - c.course.start_x_m) / c.speed_m_s + c.speed_ramp_s;
-    if (auto v =
-            Check(duration_s <= core::limits::kMaxRunDurationS, "table.speed_m_s", c.speed_m_s,
-                  "the course takes " + FormatNumber(duration_s) + " s, limit " +
-                      FormatNumber(core::limits::kMaxRunDurationS) + " s, see docs/limits.md")) {
-        return v;
-    }
+    check.That(duration_s <= core::limits::kMaxRunDurationS, "table.speed_m_s", c.speed_m_s,
+               "the course takes " + core::FormatNumber(duration_s) + " s, limit " +
+                   core::FormatNumber(core::limits::kMaxRunDurationS) + " s, see docs/limits.md");
     const double poses = duration_s * c.physics_rate_hz / c.output_decimation;
-    return Check(poses <= static_cast<double>(core::limits::kMaxPoses), "table.output_decimation",
-                 c.output_decimation,
-                 FormatNumber(poses) + " poses, limit " + std::to_string(core::limits::kMaxPoses) +
-                     ", see docs/limits.md");
+    check.That(poses <= static_cast<double>(core::limits::kMaxPoses), "table.output_decimation",
+               c.output_decimation,
+               core::FormatNumber(poses) + " poses, limit " +
+                   std::to_string(core::limits::kMaxPoses) + ", see docs/limits.md");
 }
 
-std::optional<ConfigViolation> CheckMechanism(const TableConfig& c) {
-    if (auto v = Check(c.physics_rate_hz >= 100.0 && c.physics_rate_hz <= 100000.0,
-                       "table.physics_rate_hz", c.physics_rate_hz, "allowed: 100..100000 Hz")) {
-        return v;
-    }
-    if (auto v = Check(c.output_decimation >= 1, "table.output_decimation", c.output_decimation,
-                       "must be >= 1")) {
-        return v;
-    }
-    if (auto v = Check(c.speed_m_s > 0.0 && c.speed_m_s <= TableLimits::kMaxSpeedMS,
-                       "table.speed_m_s", c.speed_m_s, "allowed: 0 < v <= 1 m/s")) {
-        return v;
-    }
-    if (auto v = Check(c.speed_ramp_s > 0.0 && c.speed_ramp_s <= 60.0, "table.speed_ramp_s",
-                       c.speed_ramp_s, "allowed: 0 < ramp <= 60 s")) {
-        return v;
-    }
-    if (auto v = Check(c.sensor_height_m > 0.0 && c.sensor_height_m <= 10.0,
-                       "table.sensor_height_m", c.sensor_height_m, "allowed: 0 < h <= 10 m")) {
-        return v;
-    }
-    if (auto v = Check(c.mount_pitch_deg >= TableLimits::kMinPitchDeg &&
-                           c.mount_pitch_deg <= TableLimits::kMaxPitchDeg,
-                       "table.mount_pitch_deg", c.mount_pitch_deg, "allowed: 25..40 deg")) {
-        return v;
-    }
+void CheckMechanism(const core::Check& check, const TableConfig& c) {
+    check.That(c.physics_rate_hz >= 100.0 && c.physics_rate_hz <= 100000.0, "table.physics_rate_hz",
+               c.physics_rate_hz, "allowed: 100..100000 Hz");
+    check.That(c.output_decimation >= 1, "table.output_decimation", c.output_decimation,
+               "must be >= 1");
+    check.That(c.speed_m_s > 0.0 && c.speed_m_s <= TableLimits::kMaxSpeedMS, "table.speed_m_s",
+               c.speed_m_s, "allowed: 0 < v <= 1 m/s");
+    check.That(c.speed_ramp_s > 0.0 && c.speed_ramp_s <= 60.0, "table.speed_ramp_s", c.speed_ramp_s,
+               "allowed: 0 < ramp <= 60 s");
+    check.That(c.sensor_height_m > 0.0 && c.sensor_height_m <= 10.0, "table.sensor_height_m",
+               c.sensor_height_m, "allowed: 0 < h <= 10 m");
+    check.That(c.mount_pitch_deg >= TableLimits::kMinPitchDeg &&
+                   c.mount_pitch_deg <= TableLimits::kMaxPitchDeg,
+               "table.mount_pitch_deg", c.mount_pitch_deg, "allowed: 25..40 deg");
     for (int i = 0; i < 3; ++i) {
-        if (auto v = Check(std::abs(c.pitch_to_roll_m[i]) <= 1.0, "table.pitch_to_roll_m",
-                           c.pitch_to_roll_m[i], "each component within +-1 m")) {
-            return v;
-        }
+        check.That(std::abs(c.pitch_to_roll_m[i]) <= 1.0, "table.pitch_to_roll_m",
+                   c.pitch_to_roll_m[i], "each component within +-1 m");
     }
-    if (auto v = Check(c.roll_to_sensor_m >= 0.0 && c.roll_to_sensor_m <= 1.0,
-                       "table.roll_to_sensor_m", c.roll_to_sensor_m, "allowed: 0..1 m")) {
-        return v;
-    }
-    return Check(c.max_range_m > 0.0 && c.max_range_m <= 80.0, "table.max_range_m", c.max_range_m,
-                 "allowed: 0 < r <= 80 m");
+    check.That(c.roll_to_sensor_m >= 0.0 && c.roll_to_sensor_m <= 1.0, "table.roll_to_sensor_m",
+               c.roll_to_sensor_m, "allowed: 0..1 m");
+    check.That(c.max_range_m > 0.0 && c.max_range_m <= 80.0, "table.max_range_m", c.max_range_m,
+               "allowed: 0 < r <= 80 m");
 }
 
-std::optional<ConfigViolation> CheckCompliance(const TableConfig& c) {
+void CheckCompliance(const core::Check& check, const TableConfig& c) {
     if (!c.compliance.enabled) {
-        return std::nullopt;
+        return;
     }
     // Explicit spring-damper: keep wn dt small so the integration stays stable.
     const double max_hz = 0.05 * c.physics_rate_hz;
-    if (auto v = Check(
-            c.compliance.natural_frequency_hz > 0.0 && c.compliance.natural_frequency_hz <= max_hz,
-            "table.compliance.natural_frequency_hz", c.compliance.natural_frequency_hz,
-            "allowed: 0 < f <= physics_rate_hz / 20 = " + FormatNumber(max_hz))) {
-        return v;
-    }
-    return Check(c.compliance.damping_ratio >= 0.0 && c.compliance.damping_ratio <= 2.0,
-                 "table.compliance.damping_ratio", c.compliance.damping_ratio, "allowed: 0..2");
+    check.That(
+        c.compliance.natural_frequency_hz > 0.0 && c.compliance.natural_frequency_hz <= max_hz,
+        "table.compliance.natural_frequency_hz", c.compliance.natural_frequency_hz,
+        "allowed: 0 < f <= physics_rate_hz / 20 = " + core::FormatNumber(max_hz));
+    check.That(c.compliance.damping_ratio >= 0.0 && c.compliance.damping_ratio <= 2.0,
+               "table.compliance.damping_ratio", c.compliance.damping_ratio, "allowed: 0..2");
 }
 
 }  // namespace
@@ -191,29 +137,16 @@ const char* MotionName(Motion motion) {
     return "?";
 }
 
-std::optional<ConfigViolation> TableConfig::FirstViolation() const {
-    if (auto v = CheckMechanism(*this)) {
-        return v;
-    }
-    if (auto v = CheckCourse(course)) {
-        return v;
-    }
-    if (auto v = CheckRunSize(*this)) {
-        return v;
-    }
-    if (auto v = CheckProfile(roll_profile, "table.roll_profile", -TableLimits::kMaxAbsRollDeg,
-                              TableLimits::kMaxAbsRollDeg)) {
-        return v;
-    }
-    if (auto v = CheckProfile(pitch_profile, "table.pitch_profile", TableLimits::kMinPitchDeg,
-                              TableLimits::kMaxPitchDeg)) {
-        return v;
-    }
-    return CheckCompliance(*this);
-}
-
 void TableConfig::Validate(const std::string& where) const {
-    ThrowIfViolated(FirstViolation(), where);
+    const core::Check check(where);
+    CheckMechanism(check, *this);
+    CheckCourse(check, course);
+    CheckRunSize(check, *this);
+    CheckProfile(check, roll_profile, "table.roll_profile", -TableLimits::kMaxAbsRollDeg,
+                 TableLimits::kMaxAbsRollDeg);
+    CheckProfile(check, pitch_profile, "table.pitch_profile", TableLimits::kMinPitchDeg,
+                 TableLimits::kMaxPitchDeg);
+    CheckCompliance(check, *this);
 }
 
 AngleProfile RollCommand(const TableConfig& config, Motion motion) {
@@ -276,7 +209,7 @@ SpeedSchedule PlanCarriage(const TableConfig& config, Motion motion) {
     }
     if (!std::isfinite(min_ahead)) {
         throw MakeInputError("table config", "table.course.lateral_offset_m",
-                             FormatNumber(course.lateral_offset_m),
+                             core::FormatNumber(course.lateral_offset_m),
                              "no beam within max_range_m reaches the course's floor strip");
     }
     SpeedSchedule schedule;

@@ -13,6 +13,7 @@
 #include <variant>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/core/text.hpp"
 
 namespace casmap::rig {
 
@@ -150,7 +151,7 @@ public:
         if (!std::isfinite(ground)) {
             throw MakeInputError(
                 "vehicle config", "vehicle.start_xy_m",
-                FormatNumber(c.start_xy_m.x()) + ", " + FormatNumber(c.start_xy_m.y()),
+                core::FormatNumber(c.start_xy_m.x()) + ", " + core::FormatNumber(c.start_xy_m.y()),
                 "no terrain below the start position");
         }
         const double drop = 0.02;  // spawn slightly above full extension, then settle
@@ -315,8 +316,9 @@ VehicleRun RunVehicle(const core::Scene& scene, const VehicleConfig& config) {
             break;
         }
         if (t_next > time_limit_s || sensor.translation.z() < start_z - 100.0) {
-            throw MakeInputError("vehicle config", "vehicle.end_x_m", FormatNumber(config.end_x_m),
-                                 "not reached within " + FormatNumber(time_limit_s) +
+            throw MakeInputError("vehicle config", "vehicle.end_x_m",
+                                 core::FormatNumber(config.end_x_m),
+                                 "not reached within " + core::FormatNumber(time_limit_s) +
                                      " s: the vehicle is stuck or left the terrain");
         }
     }

@@ -11,7 +11,6 @@
 
 #include "casmap/core/scene.hpp"
 #include "casmap/core/trajectory.hpp"
-#include "casmap/rig/config_violation.hpp"
 
 namespace casmap::rig {
 
@@ -57,10 +56,6 @@ struct VehicleConfig {
     /// "[<where>: ]vehicle.<key> = <value> (<rule>)" for the first broken rule; io's rig loader
     /// puts the key's file:line:col in front instead.
     void Validate(const std::string& where = "") const;
-
-private:
-    // The first broken rule; Validate() throws it (an implementation detail, not an API).
-    [[nodiscard]] std::optional<ConfigViolation> FirstViolation() const;
 };
 
 /// One simulated drive: timed scanner poses and how many wheels touched ground at each sample.

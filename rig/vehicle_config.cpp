@@ -1,7 +1,9 @@
 // VehicleConfig validation (no Bullet here).
 #include <cmath>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/limits.hpp"
+#include "casmap/core/text.hpp"
 #include "casmap/rig/vehicle.hpp"
 
 namespace casmap::rig {
@@ -17,7 +19,8 @@ struct Rule {
 
 }  // namespace
 
-std::optional<ConfigViolation> VehicleConfig::FirstViolation() const {
+void VehicleConfig::Validate(const std::string& where) const {
+    const core::Check check(where);
     const double max_hz = 100000.0;
     const Rule rules[] = {
         {physics_rate_hz >= 100.0 && physics_rate_hz <= max_hz, "vehicle.physics_rate_hz",
@@ -61,38 +64,24 @@ std::optional<ConfigViolation> VehicleConfig::FirstViolation() const {
          "vehicle.mount_pitch_deg", mount_pitch_deg, "allowed: 0..45 deg (nose down)"},
     };
     for (const Rule& r : rules) {
-        if (!r.ok || !std::isfinite(r.value)) {
-            return ConfigViolation{r.field, FormatNumber(r.value), r.rule};
-        }
+        check.That(r.ok && std::isfinite(r.value), r.field, r.value, r.rule);
     }
     // The run's length in space, time and poses bounds what the rig allocates
     // (docs/limits.md).
     namespace limits = core::limits;
     const double length_m = end_x_m - start_xy_m.x();
-    if (length_m > limits::kMaxCourseLengthM) {
-        return ConfigViolation{"vehicle.end_x_m", FormatNumber(end_x_m),
-                               "course length end_x_m - start_xy_m[0] limit " +
-                                   FormatNumber(limits::kMaxCourseLengthM) +
-                                   " m, see docs/limits.md"};
-    }
+    check.That(length_m <= limits::kMaxCourseLengthM, "vehicle.end_x_m", end_x_m,
+               "course length end_x_m - start_xy_m[0] limit " +
+                   core::FormatNumber(limits::kMaxCourseLengthM) + " m, see docs/limits.md");
     const double duration_s = length_m / speed_m_s + speed_ramp_s + settle_s;
-    if (duration_s > limits::kMaxRunDurationS) {
-        return ConfigViolation{"vehicle.speed_m_s", FormatNumber(speed_m_s),
-                               "the course takes " + FormatNumber(duration_s) + " s, limit " +
-                                   FormatNumber(limits::kMaxRunDurationS) +
-                                   " s, see docs/limits.md"};
-    }
+    check.That(duration_s <= limits::kMaxRunDurationS, "vehicle.speed_m_s", speed_m_s,
+               "the course takes " + core::FormatNumber(duration_s) + " s, limit " +
+                   core::FormatNumber(limits::kMaxRunDurationS) + " s, see docs/limits.md");
     const double poses = duration_s * physics_rate_hz / output_decimation;
-    if (poses > static_cast<double>(limits::kMaxPoses)) {
-        return ConfigViolation{"vehicle.output_decimation", std::to_string(output_decimation),
-                               FormatNumber(poses) + " poses, limit " +
-                                   std::to_string(limits::kMaxPoses) + ", see docs/limits.md"};
-    }
-    return std::nullopt;
-}
-
-void VehicleConfig::Validate(const std::string& where) const {
-    ThrowIfViolated(FirstViolation(), where);
+    check.That(poses <= static_cast<double>(limits::kMaxPoses), "vehicle.output_decimation",
+               output_decimation,
+               core::FormatNumber(poses) + " poses, limit " + std::to_string(limits::kMaxPoses) +
+                   ", see docs/limits.md");
 }
 
 }  // namespace casmap::rig

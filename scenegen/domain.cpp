@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/scenegen/scene_writer.hpp"
 
@@ -49,50 +50,48 @@ std::vector<RangeField> DomainConfig::Ranges() {
 }
 
 void DomainConfig::Validate(const std::string& where) const {
-    const auto fail = [&](const std::string& key, const std::string& value,
-                          const std::string& rule) {
-        throw MakeInputError(where, "domain." + key, value, rule);
-    };
+    const core::Check check(where, "domain.");
     DomainConfig copy = *this;  // Ranges() hands out pointers into its object
     for (const RangeField& f : copy.Ranges()) {
         const Range& r = *f.range;
         if (!(std::isfinite(r.min) && std::isfinite(r.max) && f.lo <= r.min && r.min <= r.max &&
               r.max <= f.hi)) {
-            fail(f.key, Text(r),
-                 "allowed: " + FormatNumber(f.lo) + " <= min <= max <= " + FormatNumber(f.hi));
+            check.Fail(
+                f.key, Text(r),
+                "allowed: " + FormatNumber(f.lo) + " <= min <= max <= " + FormatNumber(f.hi));
         }
     }
     double total = 0.0;
     for (const double w : motion_weights) {
         if (!(w >= 0.0 && std::isfinite(w))) {
-            fail("motion_weights", FormatNumber(w), "each weight must be finite and >= 0");
+            check.Fail("motion_weights", FormatNumber(w), "each weight must be finite and >= 0");
         }
         total += w;
     }
     if (!(total > 0.0)) {
-        fail("motion_weights", "all 0", "at least one weight must be > 0");
+        check.Fail("motion_weights", "all 0", "at least one weight must be > 0");
     }
     if (angular_resolutions_deg.empty()) {
-        fail("angular_resolutions_deg", "[]", "list at least one of 0.25, 0.5, 1");
+        check.Fail("angular_resolutions_deg", "[]", "list at least one of 0.25, 0.5, 1");
     }
     for (const double r : angular_resolutions_deg) {
         if (r != 0.25 && r != 0.5 && r != 1.0) {
-            fail("angular_resolutions_deg", FormatNumber(r), "allowed: 0.25, 0.5, 1");
+            check.Fail("angular_resolutions_deg", FormatNumber(r), "allowed: 0.25, 0.5, 1");
         }
     }
     if (range_modes.empty()) {
-        fail("range_modes", "[]", "list at least one of 8m, 16m, 32m, 80m");
+        check.Fail("range_modes", "[]", "list at least one of 8m, 16m, 32m, 80m");
     }
     for (const std::string& m : range_modes) {
         if (m != "8m" && m != "16m" && m != "32m" && m != "80m") {
-            fail("range_modes", m, "allowed: 8m, 16m, 32m (mm units), 80m (cm units)");
+            check.Fail("range_modes", m, "allowed: 8m, 16m, 32m (mm units), 80m (cm units)");
         }
     }
     if (!(triangle_probability >= 0.0 && triangle_probability <= 1.0)) {
-        fail("triangle_probability", FormatNumber(triangle_probability), "allowed: 0..1");
+        check.Fail("triangle_probability", FormatNumber(triangle_probability), "allowed: 0..1");
     }
     if (!(pose_error_probability >= 0.0 && pose_error_probability <= 1.0)) {
-        fail("pose_error_probability", FormatNumber(pose_error_probability), "allowed: 0..1");
+        check.Fail("pose_error_probability", FormatNumber(pose_error_probability), "allowed: 0..1");
     }
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/scenegen/scene_writer.hpp"
 
@@ -299,54 +300,52 @@ std::vector<RangeField> SceneGenConfig::Ranges() {
 }
 
 void SceneGenConfig::Validate(const std::string& where) const {
-    const auto fail = [&](const std::string& key, const std::string& value,
-                          const std::string& rule) {
-        throw MakeInputError(where, "scene." + key, value, rule);
-    };
+    const core::Check check(where, "scene.");
     SceneGenConfig copy = *this;  // Ranges() hands out pointers into its object
     for (const RangeField& f : copy.Ranges()) {
         const Range& r = *f.range;
         if (!(std::isfinite(r.min) && std::isfinite(r.max) && f.lo <= r.min && r.min <= r.max &&
               r.max <= f.hi)) {
-            fail(f.key, "[" + FormatNumber(r.min) + ", " + FormatNumber(r.max) + "]",
-                 "allowed: " + FormatNumber(f.lo) + " <= min <= max <= " + FormatNumber(f.hi));
+            check.Fail(
+                f.key, "[" + FormatNumber(r.min) + ", " + FormatNumber(r.max) + "]",
+                "allowed: " + FormatNumber(f.lo) + " <= min <= max <= " + FormatNumber(f.hi));
         }
     }
     if (!(terrain_probability >= 0.0 && terrain_probability <= 1.0)) {
-        fail("terrain_probability", FormatNumber(terrain_probability), "allowed: 0..1");
+        check.Fail("terrain_probability", FormatNumber(terrain_probability), "allowed: 0..1");
     }
     if (!(ground_cell_m >= 0.01 && ground_cell_m <= 0.5)) {
-        fail("ground_cell_m", FormatNumber(ground_cell_m), "allowed: 0.01..0.5");
+        check.Fail("ground_cell_m", FormatNumber(ground_cell_m), "allowed: 0.01..0.5");
     }
     if (noise_octaves < 1 || noise_octaves > 8) {
-        fail("noise_octaves", std::to_string(noise_octaves), "allowed: 1..8");
+        check.Fail("noise_octaves", std::to_string(noise_octaves), "allowed: 1..8");
     }
     if (!(max_slope_deg > 0.0 && max_slope_deg <= 60.0)) {
-        fail("max_slope_deg", FormatNumber(max_slope_deg), "allowed: > 0 and <= 60");
+        check.Fail("max_slope_deg", FormatNumber(max_slope_deg), "allowed: > 0 and <= 60");
     }
     double total = 0.0;
     for (const double w : kind_weights) {
         if (!(w >= 0.0 && std::isfinite(w))) {
-            fail("kind_weights", FormatNumber(w), "each weight must be finite and >= 0");
+            check.Fail("kind_weights", FormatNumber(w), "each weight must be finite and >= 0");
         }
         total += w;
     }
     if (!(total > 0.0)) {
-        fail("kind_weights", "all 0", "at least one weight must be > 0");
+        check.Fail("kind_weights", "all 0", "at least one weight must be > 0");
     }
     if (!(terrain_rock_weight_factor >= 0.0 && terrain_rock_weight_factor <= 100.0)) {
-        fail("terrain_rock_weight_factor", FormatNumber(terrain_rock_weight_factor),
-             "allowed: 0..100");
+        check.Fail("terrain_rock_weight_factor", FormatNumber(terrain_rock_weight_factor),
+                   "allowed: 0..100");
     }
     if (!(min_gap_m >= 0.0 && min_gap_m <= 1.0)) {
-        fail("min_gap_m", FormatNumber(min_gap_m), "allowed: 0..1");
+        check.Fail("min_gap_m", FormatNumber(min_gap_m), "allowed: 0..1");
     }
     if (!(p_dark >= 0.0 && p_bright >= 0.0 && p_retro >= 0.0 &&
           p_dark + p_bright + p_retro <= 1.0)) {
-        fail("p_dark",
-             FormatNumber(p_dark) + " + p_bright " + FormatNumber(p_bright) + " + p_retro " +
-                 FormatNumber(p_retro),
-             "allowed: each >= 0, sum <= 1");
+        check.Fail("p_dark",
+                   FormatNumber(p_dark) + " + p_bright " + FormatNumber(p_bright) + " + p_retro " +
+                       FormatNumber(p_retro),
+                   "allowed: each >= 0, sum <= 1");
     }
 }
 

@@ -11,6 +11,7 @@
 #include <variant>
 #include <vector>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
 #include "casmap/core/text.hpp"
@@ -277,14 +278,9 @@ void CentreOfRow(const Primitives& prims,
 }  // namespace
 
 void GroundTruthOptions::Validate() const {
-    if (!std::isfinite(datum_m)) {
-        throw MakeInputError("ground truth", "datum_m", core::FormatNumber(datum_m),
-                             "must be finite");
-    }
-    if (cylinder_segments < 8) {
-        throw MakeInputError("ground truth", "cylinder_segments", std::to_string(cylinder_segments),
-                             "allowed: >= 8");
-    }
+    const core::Check check("ground truth");
+    check.Finite("datum_m", datum_m);
+    check.That(cylinder_segments >= 8, "cylinder_segments", cylinder_segments, "allowed: >= 8");
 }
 
 bool ClampsToDatum(const core::Scene& scene, const GroundTruthOptions& options) {

@@ -142,6 +142,24 @@ TEST_F(SceneFileTest, RejectsReflectivityOutsideZeroToOneWithLineAndField) {
                            ":8:19: objects[2].reflectivity = 1.4 (allowed: 0..1)");
 }
 
+// The value rules are core::Scene::Validate()'s; the loader names the key's line:column and
+// quotes the value as the file writes it.
+TEST_F(SceneFileTest, SceneRulesNameTheKeysPlaceAndItsText) {
+    const std::string file = (dir_ / "scene.yaml").string();
+    EXPECT_EQ(ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, 1, 1]}\n"
+                      "  - name: a\n    cylinder: {radius_m: 1, height_m: 1}\n"),
+              file + ":4:11: objects[1].name = a (duplicate name)");
+    EXPECT_EQ(ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, 1, 1]}\n"
+                      "    pose: {xyz_m: [0, 0, 2.0e4]}\n"),
+              file +
+                  ":4:11: objects[0].pose = [0, 0, 20000] (position within +-10000 m, see "
+                  "docs/limits.md)");
+    EXPECT_EQ(ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, 1, 1]}\n"
+                      "    reflectivity: 1.40\n"),
+              file + ":4:19: objects[0].reflectivity = 1.40 (allowed: 0..1)");
+    EXPECT_EQ(ErrorOf("objects: []\n"), file + ":1:10: objects = [] (must be a non-empty list)");
+}
+
 TEST_F(SceneFileTest, RejectsUnknownKeys) {
     EXPECT_THAT(ErrorOf("objects:\n  - name: a\n    box: {size_m: [1, 1, 1]}\n    colour: red\n"),
                 ::testing::HasSubstr("scene.yaml:4:5: objects[0].colour (unknown key"));

@@ -14,7 +14,7 @@ TEST(MixedPixels, ValidationNamesTheOptionsFieldNotAFlag) {
     MixedPixelsOptions o;
     o.step_m = 0.0;
     try {
-        ValidateMixedPixelsOptions(o);
+        o.Validate();
         FAIL() << "no error";
     } catch (const InputError& e) {
         EXPECT_EQ(e.field(), "step_m");
@@ -23,7 +23,7 @@ TEST(MixedPixels, ValidationNamesTheOptionsFieldNotAFlag) {
     }
     o = MixedPixelsOptions{};
     o.to_m = 0.1;
-    EXPECT_THROW(ValidateMixedPixelsOptions(o), InputError);
+    EXPECT_THROW(o.Validate(), InputError);
     o = MixedPixelsOptions{};
     o.readings = 0;
     EXPECT_THROW((void)RunMixedPixels(o, 1), InputError);

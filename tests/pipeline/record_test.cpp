@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 std::string FieldOfError(const RecordOptions& o) {
     try {
-        CheckRecordOptions(o);
+        o.Validate();
     } catch (const InputError& e) {
         EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
         return e.field();
