@@ -24,12 +24,24 @@
 //              certainty-weighted centroid of the known cells of its 3 x 3 within edge_tol_m
 //              of its height (that cell's own h; the peak's h if that cell is not in the set);
 //   out = M    everywhere else.
-// cas_hybrid (docs/paper-notes.md "cas_hybrid") is cas_edge plus cas_median's surface rule for
-// the known cells that stand out from M but are not candidates (cas_trail removed them, or they
-// lie within k of the map's border): one with >= surface_min known window cells within
-// surface_tol_m of its height takes the lower median of those cells (detail::SurfaceMedian)
-// instead of M. On the training maps those are one-hit cells at a box's far edges and corners,
-// in sparsely seen windows, that Eq. 10 removed inside cas_trail; M rounds them to the floor.
+// cas_hybrid (docs/paper-notes.md "cas_hybrid") is cas_edge with three changes:
+//   - cas_median's surface rule for the known cells that stand out from M but are not
+//     candidates (cas_trail removed them, or they lie within k of the map's border): one with
+//     >= surface_min known window cells within surface_tol_m of its height takes the lower
+//     median of those cells (detail::SurfaceMedian). On the training maps those are one-hit
+//     cells at a box's far edges and corners, in sparsely seen windows, that Eq. 10 removed
+//     inside cas_trail; M rounds them to the floor;
+//   - the value of every non-object cell is B = M + median_mix (R - M), R the median of the
+//     raw map (where both are known; M elsewhere): M lets CAS's fills vote (right on box tops
+//     next to a shadow, wrong on the floor beyond a box edge), R lets never-observed cells
+//     vote the floor (the reverse); each is wrong where the other is right;
+//   - a surface cell takes B + w (h - B), w = c / (c + surface_prior): its measured height
+//     in proportion to its evidence. A surface cell seen once (c = a = 3) is as often a box
+//     edge (h right) as a box top smeared one cell onto the floor (B right) on the training
+//     maps; the least-squares answer for such a cell lies between; cells seen many times keep
+//     nearly h.
+// Candidates, surfaces and peaks are decided against M exactly as in cas_edge; the pole's
+// centroid cell keeps its raw height.
 // Every value comes from the unfiltered map, cas_trail's output or the median; the centroid is
 // summed in a fixed order, so the output is the same bit for bit at any thread count.
 #include <algorithm>
@@ -43,11 +55,11 @@
 namespace casmap::mapper {
 namespace {
 
-// cas_edge; with surface_median, cas_hybrid (see the top of the file).
+// cas_edge; with hybrid, cas_hybrid (see the top of the file).
 FilterResult EdgeFilter(const core::MapF& elevation,
                         const core::MapF& certainty,
                         const FilterParams& params,
-                        bool surface_median) {
+                        bool hybrid) {
     params.Validate();
     CasParams cas = params.cas;
     cas.support = Support::kHeight;
@@ -56,7 +68,20 @@ FilterResult EdgeFilter(const core::MapF& elevation,
     const auto tol = static_cast<float>(cas.support_tol_m);
     const auto edge_tol = static_cast<float>(cas.edge_tol_m);
     const auto surface_tol = static_cast<float>(cas.surface_tol_m);
+    const auto prior = static_cast<float>(cas.surface_prior);
     std::vector<float> samples;
+    // B: the value of non-object cells (M for cas_edge).
+    core::MapF base = median;
+    if (hybrid && cas.median_mix > 0.0) {
+        const core::MapF raw_median = MedianFilter(elevation, params.baseline);
+        const auto mix = static_cast<float>(cas.median_mix);
+        for (std::size_t n = 0; n < base.data.size(); ++n) {
+            const float r = raw_median.data[n];
+            if (!std::isnan(base.data[n]) && !std::isnan(r)) {
+                base.data[n] += mix * (r - base.data[n]);
+            }
+        }
+    }
     const int rows = elevation.rows;
     const int cols = elevation.cols;
     const int k = cas.k;
@@ -101,15 +126,19 @@ FilterResult EdgeFilter(const core::MapF& elevation,
                 }
                 surface = same >= cas.edge_min;
             }
+            const float b = base.data[n];
             if (surface) {
-                out.elevation.data[n] = elevation.data[n];
-            } else if (surface_median && candidate[n] == 0 && known(n) &&
+                const float h = elevation.data[n];
+                const float c = certainty.data[n];
+                out.elevation.data[n] =
+                    hybrid && prior > 0.0F && !std::isnan(b) ? b + c / (c + prior) * (h - b) : h;
+            } else if (hybrid && candidate[n] == 0 && known(n) &&
                        !(std::abs(elevation.data[n] - median.data[n]) <= tol)) {
                 out.elevation.data[n] = detail::SurfaceMedian(elevation, certainty, i, j, k,
                                                               surface_tol, cas.surface_min, samples)
-                                            .value_or(median.data[n]);
+                                            .value_or(b);
             } else {
-                out.elevation.data[n] = median.data[n];
+                out.elevation.data[n] = b;
             }
             if (peak && !surface) {
                 peaks.push_back(n);

@@ -148,6 +148,10 @@ const std::map<std::string, Setter, std::less<>>& Setters() {
                              auto v) { p.cas.surface_tol_m = ParseRange(n, v, 0, kInf, true); }},
         {"surface_min",
          [](FilterParams& p, auto n, auto v) { p.cas.surface_min = ParseInt(n, v, 1, 225); }},
+        {"surface_prior", [](FilterParams& p, auto n,
+                             auto v) { p.cas.surface_prior = ParseRange(n, v, 0, 1e6, false); }},
+        {"median_mix",
+         [](FilterParams& p, auto n, auto v) { p.cas.median_mix = ParseRange(n, v, 0, 1, false); }},
         {"window",
          [](FilterParams& p, auto n, auto v) {
              const int w = ParseInt(n, v, 3, 15);
@@ -348,6 +352,10 @@ void FilterParams::Validate() const {
                cas.surface_tol_m, "allowed: > 0");
     check.That(cas.surface_min >= 1 && cas.surface_min <= 225, "surface_min", cas.surface_min,
                "allowed: integer 1..225");
+    check.That(cas.surface_prior >= 0 && cas.surface_prior <= 1e6, "surface_prior",
+               cas.surface_prior, "allowed: 0..1e6");
+    check.That(cas.median_mix >= 0 && cas.median_mix <= 1, "median_mix", cas.median_mix,
+               "allowed: 0..1");
     check.That(baseline.window >= 3 && baseline.window <= 15 && baseline.window % 2 == 1, "window",
                baseline.window, "allowed: odd integer 3..15");
     check.That(!baseline.noise || (*baseline.noise >= 0 && std::isfinite(*baseline.noise)), "noise",

@@ -86,6 +86,10 @@ struct CasParams {
     // the median of those cells instead of the plain median.
     double surface_tol_m = 0.015;
     int surface_min = 7;
+    // cas_hybrid only: a surface cell takes B + c / (c + surface_prior) (h - B) (0: h, as
+    // cas_edge); B = M + median_mix (median of the raw map - M) on non-object cells (0: M).
+    double surface_prior = 0.0;
+    double median_mix = 0.0;
 
     /// Eq. 8: A = a * (round(s / (v dt)) + 2), or the given A.
     [[nodiscard]] double EffectiveA() const;

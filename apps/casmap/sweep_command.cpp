@@ -105,8 +105,9 @@ void AddSweepCommand(CLI::App& app, CommonOptions& common) {
         "sweep", "Grid over CAS parameters and speed: mean and spread of PI per point");
     sub->add_option("--set", flags->set,
                     "NAME=FROM:TO:STEP, NAME in A, G, B, h_sum_min, a, E, k, speed, "
-                    "support_tol_m, support_min, ground_k, ground_quantile, surface_tol_m, "
-                    "surface_min, or a pre-filter's / the Kalman mapper's shadow.*, "
+                    "support_tol_m, support_min, ground_k, ground_quantile, edge_min, edge_tol_m, "
+                    "surface_tol_m, surface_min, surface_prior, median_mix, or a pre-filter's / "
+                    "the Kalman mapper's shadow.*, "
                     "range_jump.*, kalman.* (with a pipeline running it; docs/commands/sweep.md); "
                     "repeatable");
     sub->add_option("--fix", opt.fixed, "fixed filter parameter NAME=VALUE; repeatable");

@@ -1,8 +1,9 @@
 // cas_hybrid on closed-form synthetic maps: a pole with a trail and a halo (pole kept bit for
 // bit, trail and halo gone), a box's edges and corners (kept bit for bit), a box seen once
 // whose corners cas_trail removes (cas_edge leaves the floor's median there, cas_hybrid the
-// lower median of the corner's same-height cells, computed here independently), a flat floor,
-// unknown = NaN, bit-determinism and parameter validation naming the field.
+// lower median of the corner's same-height cells, computed here independently), surface_prior
+// and median_mix against their formulas, a flat floor, unknown = NaN, bit-determinism and
+// parameter validation naming the field.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -97,6 +98,54 @@ TEST(CasHybrid, RemovesTrailAndHaloKeepsThePole) {
     // No trail cell is a surface (the trail's heights are 0.11-0.19 m apart): cas_edge's map.
     EXPECT_TRUE(
         SameBits(out.elevation, RunFilter(FilterMethod::kCasEdge, p.h, p.c, params).elevation));
+    // With the preset's surface_prior and median_mix the pole keeps its height bit for bit.
+    FilterParams tuned;
+    tuned.Set("surface_prior", "1.5");
+    tuned.Set("median_mix", "0.25");
+    const FilterResult t = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, tuned);
+    EXPECT_EQ(t.elevation.at(15, 20), 0.914F);
+    for (int n = 0; n < 5; ++n) {
+        EXPECT_LT(t.elevation.at(16 + n, 20), 0.05F) << n;
+    }
+}
+
+TEST(CasHybrid, SurfacePriorAndMedianMixFollowTheirFormulas) {
+    // A noisy box whose corners are surfaces (9 same-height cells) and a dense trail beside a
+    // pole whose cells the median of the raw map keeps high: B = M + mix (R - M) on every
+    // non-object cell, B + c / (c + prior) (h - B) on a surface cell, all in float.
+    Maps p = NoisyBox(36.0F);
+    p.c.at(20, 10) = 6.0F;  // a corner seen twice
+    p.h.at(5, 30) = 0.914F;
+    p.c.at(5, 30) = 240.0F;
+    int n = 0;
+    for (int i = 6; i < 11; ++i) {
+        for (int j = 29; j < 32; ++j) {
+            p.h.at(i, j) = 0.1F + 0.053F * static_cast<float>((n * 7) % 15);
+            p.c.at(i, j) = 3.0F;
+            ++n;
+        }
+    }
+    FilterParams params;
+    params.Set("surface_prior", "1.5");
+    params.Set("median_mix", "0.25");
+    const FilterResult out = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, params);
+    const core::MapF m = MedianFilter(
+        RunFilter(FilterMethod::kCasTrail, p.h, p.c, params).elevation, params.baseline);
+    const core::MapF r = MedianFilter(p.h, params.baseline);
+    const auto base = [&](int i, int j) { return m.at(i, j) + 0.25F * (r.at(i, j) - m.at(i, j)); };
+    for (const auto& [i, j] : kCorners) {
+        const float b = base(i, j);
+        const float c = p.c.at(i, j);
+        const float want = b + c / (c + 1.5F) * (p.h.at(i, j) - b);
+        EXPECT_TRUE(SameBits(out.elevation.at(i, j), want)) << i << "," << j;
+    }
+    EXPECT_NEAR(out.elevation.at(20, 10), 0.3F * 6.0F / 7.5F, 0.01F);  // seen twice: 80 %
+    EXPECT_NEAR(out.elevation.at(29, 19), 0.3F * 36.0F / 37.5F, 0.01F);
+    EXPECT_LT(m.at(8, 30), 0.01F);  // cas_trail removed the trail: M is the floor
+    EXPECT_GT(r.at(8, 30), 0.1F);   // the raw map's median keeps a trail height
+    EXPECT_TRUE(SameBits(out.elevation.at(8, 30), base(8, 30)));
+    EXPECT_TRUE(SameBits(out.elevation.at(35, 35), base(35, 35)));  // the floor
+    EXPECT_EQ(out.elevation.at(5, 30), 0.914F);                     // the pole
 }
 
 TEST(CasHybrid, KeepsABoxsEdgesAndCornersBitForBit) {
@@ -213,7 +262,12 @@ TEST(CasHybrid, RejectsBadParametersNamingTheField) {
                                       {"surface_tol_m", "0"},
                                       {"surface_tol_m", "-0.01"},
                                       {"surface_tol_m", "nan"},
-                                      {"edge_tol_m", "0"}}) {
+                                      {"edge_tol_m", "0"},
+                                      {"surface_prior", "-1"},
+                                      {"surface_prior", "2e6"},
+                                      {"surface_prior", "nan"},
+                                      {"median_mix", "-0.1"},
+                                      {"median_mix", "1.5"}}) {
         try {
             params.Set(name, value);
             ADD_FAILURE() << name << "=" << value << " accepted";
@@ -222,9 +276,14 @@ TEST(CasHybrid, RejectsBadParametersNamingTheField) {
         }
     }
     const Maps p = NoisyFloor();
-    for (const char* field : {"surface_min", "edge_min"}) {
+    for (const char* field : {"surface_min", "edge_min", "surface_prior", "median_mix"}) {
         FilterParams bad;  // set directly: Validate (run by every filter) names it
-        (std::string(field) == "surface_min" ? bad.cas.surface_min : bad.cas.edge_min) = 0;
+        const std::string f = field;
+        if (f == "surface_min" || f == "edge_min") {
+            (f == "surface_min" ? bad.cas.surface_min : bad.cas.edge_min) = 0;
+        } else {
+            (f == "surface_prior" ? bad.cas.surface_prior : bad.cas.median_mix) = -1.0;
+        }
         try {
             (void)RunFilter(FilterMethod::kCasHybrid, p.h, p.c, bad);
             ADD_FAILURE() << field << " 0 accepted";
