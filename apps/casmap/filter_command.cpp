@@ -52,8 +52,17 @@ void RunFilterCommand(const FilterOptions& opt) {
     const mapper::FilterMethod method = mapper::ParseFilterMethod(opt.method, "--method");
     mapper::FilterParams params;
     if (!opt.preset.empty()) {  // a preset first, --set overrides it
-        for (const std::string& s : pipeline::LoadPreset(opt.preset, "--preset").settings) {
+        const pipeline::Preset preset = pipeline::LoadPreset(opt.preset, "--preset");
+        for (const std::string& s : preset.settings) {
             params.SetAssignment(s);
+        }
+        // Then the preset's section for the pipeline of the same name (cas_edge, cas_hybrid,
+        // ...), as casmap bench applies it to that pipeline.
+        const auto section = preset.pipeline_settings.find(std::string(mapper::ToString(method)));
+        if (section != preset.pipeline_settings.end()) {
+            for (const std::string& s : section->second) {
+                params.SetAssignment(s);
+            }
         }
     }
     WithSetFlag([&] {

@@ -124,6 +124,28 @@ TEST_F(FilterCommand, SetChangesParameters) {
     EXPECT_EQ(io::ReadMapTiff(dir_ / "out.tiff").at(16, 19), 0.7F);
 }
 
+TEST_F(FilterCommand, PresetAppliesThePipelinesSectionOfTheMethod) {
+    // config/presets/cas_hybrid.yaml gives cas_hybrid its values in `pipelines:`; the filter
+    // command applies that section for --method cas_hybrid, so the output equals the one with
+    // the same values given by --set (and differs from the defaults' on this map).
+    const std::string maps = "--elevation " + P("h.tiff") + " --certainty " + P("c.tiff");
+    ASSERT_EQ(Casmap("filter --method cas_hybrid " + maps + " --preset cas_hybrid --out " +
+                     P("preset.tiff"))
+                  .code,
+              0);
+    ASSERT_EQ(Casmap("filter --method cas_hybrid " + maps +
+                     " --set A=25 --set h_sum_min=9 --set support_min=5 --set support_tol_m=0.13"
+                     " --set edge_min=7 --set edge_tol_m=0.06 --set surface_tol_m=0.015"
+                     " --set surface_min=7 --set surface_prior=2.25 --set median_mix=0.25 --out " +
+                     P("set.tiff"))
+                  .code,
+              0);
+    ASSERT_EQ(Casmap("filter --method cas_hybrid " + maps + " --out " + P("default.tiff")).code, 0);
+    const core::MapF preset = io::ReadMapTiff(dir_ / "preset.tiff");
+    EXPECT_EQ(preset.data, io::ReadMapTiff(dir_ / "set.tiff").data);
+    EXPECT_NE(preset.data, io::ReadMapTiff(dir_ / "default.tiff").data);
+}
+
 TEST_F(FilterCommand, RejectsMissingFile) {
     ExpectBadInput("--method median --elevation " + P("missing.tiff"), "missing.tiff");
 }
