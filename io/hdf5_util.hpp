@@ -7,12 +7,15 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/io/hdf5_global_heap.hpp"
 
 namespace casmap::io::h5 {
 
@@ -210,6 +213,13 @@ private:
     /// Throws InputError naming `where` unless the file's global heap is safe for HDF5 to read
     /// (checked once per reader).
     void CheckGlobalHeap(const std::string& where, const std::string& value) const;
+    /// Throws InputError naming `object` unless its attribute messages are safe for HDF5 to
+    /// decode (FindCorruptAttributeMessages; checked once per object).
+    void CheckAttributeMessages(const std::string& object) const;
+    [[nodiscard]] std::optional<std::string> CheckBytes(
+        const std::string& where,
+        const std::string& value,
+        const std::function<std::optional<std::string>(std::uint64_t, const ReadAt&)>& check) const;
     [[nodiscard]] std::string ReadStringValue(hid_t object,
                                               hid_t type,
                                               const std::string& where,
@@ -220,6 +230,7 @@ private:
     const void* image_ = nullptr;  // the bytes of a file image (else the file at path_)
     std::size_t image_size_ = 0;
     mutable std::optional<std::string> heap_problem_;  // "" once checked and found safe
+    mutable std::map<std::string, std::string> attribute_problems_;  // per object; "" = safe
 };
 
 }  // namespace casmap::io::h5
