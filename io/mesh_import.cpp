@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -15,6 +16,7 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/limits.hpp"
 #include "casmap/core/text.hpp"
+#include "casmap/io/ply_check.hpp"
 
 // Debian's assimp is built with ASSIMP_BUILD_DEBUG: a failed internal consistency check
 // (ai_assert, e.g. "numOut != pMesh->mNumFaces" in TriangulateProcess on a malformed PLY)
@@ -66,47 +68,6 @@ void AppendNode(const aiScene& scene,
 
 namespace limits = core::limits;
 
-// The element counts a PLY header declares ("element vertex 4000000000"): assimp reserves
-// memory for them before reading a single vertex. Each element takes at least one byte of the
-// file, so a count above the file size is a lie as well.
-void CheckPlyHeader(std::string_view head, std::uint64_t file_bytes, const std::string& name) {
-    std::istringstream lines{std::string(head)};
-    std::string line;
-    bool ended = false;
-    while (std::getline(lines, line)) {
-        if (line.rfind("end_header", 0) == 0) {
-            ended = true;
-            break;
-        }
-        std::istringstream words(line);
-        std::string keyword;
-        std::string element;
-        std::string count_text;
-        if (!(words >> keyword >> element >> count_text) || keyword != "element") {
-            continue;
-        }
-        const std::string field = "PLY header: element " + element.substr(0, 32);
-        char* end = nullptr;
-        const unsigned long long count = std::strtoull(count_text.c_str(), &end, 10);
-        if (count_text.empty() || count_text[0] == '-' || end == nullptr || *end != '\0') {
-            throw MakeInputError(name, field, count_text, "must be a count");
-        }
-        limits::CheckLimit(name, field, count, limits::kMaxMeshElements, "mesh element");
-        if (count > file_bytes) {
-            throw MakeInputError(
-                name, field, count_text,
-                "more elements than the file has bytes (" + std::to_string(file_bytes) + ")");
-        }
-    }
-    // Without its end_header line assimp's PLY reader can scan for minutes (a 477-byte fuzz
-    // input: > 10 s); a real header is a few hundred bytes.
-    if (!ended) {
-        throw MakeInputError(
-            name, "PLY header", "",
-            "has no end_header line within its first " + std::to_string(head.size()) + " bytes");
-    }
-}
-
 // Binary STL: an 80-byte header, a 32-bit triangle count, 50 bytes per triangle.
 void CheckStlHeader(std::string_view head, std::uint64_t file_bytes, const std::string& name) {
     if (head.size() < 84 || head.substr(0, 5) == "solid") {
@@ -124,13 +85,17 @@ void CheckStlHeader(std::string_view head, std::uint64_t file_bytes, const std::
     }
 }
 
-void CheckHeader(std::string_view head,
-                 std::uint64_t file_bytes,
-                 const std::string& hint,
-                 const std::string& name) {
+// PLY files (assimp's PLY reader takes any file that starts with "ply") are checked whole
+// (io/ply_check.hpp); `whole` returns the file's bytes, read only for a PLY file.
+template <typename Whole>
+void CheckFile(std::string_view head,
+               std::uint64_t file_bytes,
+               const std::string& hint,
+               const std::string& name,
+               Whole whole) {
     limits::CheckLimit(name, "file size (bytes)", file_bytes, limits::kMaxFileBytes, "mesh file");
     if (head.substr(0, 3) == "ply") {
-        CheckPlyHeader(head, file_bytes, name);
+        CheckPly(whole(), name);
     } else if (hint == "stl" || hint == "STL") {
         CheckStlHeader(head, file_bytes, name);
     }
@@ -224,7 +189,7 @@ core::MeshShape ImportMeshFromMemory(std::string_view bytes,
                                      const std::string& name,
                                      const Eigen::Vector3d& scale) {
     CheckScale(name, scale);
-    CheckHeader(bytes.substr(0, 65536), bytes.size(), format_hint, name);
+    CheckFile(bytes.substr(0, 65536), bytes.size(), format_hint, name, [&] { return bytes; });
     Assimp::Importer importer;
     const aiScene* scene = ImportChecked(importer, name, [&] {
         return importer.ReadFileFromMemory(bytes.data(), bytes.size(), kReadProcess,
@@ -246,7 +211,13 @@ core::MeshShape ImportMesh(const std::filesystem::path& path, const Eigen::Vecto
     head.resize(static_cast<std::size_t>(in.gcount()));
     std::string hint = path.extension().string();
     hint = hint.empty() ? hint : hint.substr(1);
-    CheckHeader(head, std::filesystem::file_size(path, ec), hint, name);
+    std::string whole;
+    CheckFile(head, std::filesystem::file_size(path, ec), hint, name, [&] {
+        in.clear();
+        in.seekg(0);
+        whole.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        return std::string_view(whole);
+    });
     Assimp::Importer importer;
     // Triangulate polygons; SortByPType separates points/lines; no unit or axis conversion, so
     // `scale` alone maps file units to metres.
