@@ -4,6 +4,7 @@
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -85,7 +86,8 @@ void CheckStlHeader(std::string_view head, std::uint64_t file_bytes, const std::
     }
 }
 
-// PLY files (assimp's PLY reader takes any file that starts with "ply") are checked whole
+// PLY files (assimp's PLY reader takes any file whose first three bytes are "ply" in any case)
+// are checked whole
 // (io/ply_check.hpp); `whole` returns the file's bytes, read only for a PLY file.
 template <typename Whole>
 void CheckFile(std::string_view head,
@@ -94,7 +96,12 @@ void CheckFile(std::string_view head,
                const std::string& name,
                Whole whole) {
     limits::CheckLimit(name, "file size (bytes)", file_bytes, limits::kMaxFileBytes, "mesh file");
-    if (head.substr(0, 3) == "ply") {
+    const auto lower = [&](std::size_t i) {
+        return i < head.size()
+                   ? static_cast<char>(std::tolower(static_cast<unsigned char>(head[i])))
+                   : '\0';
+    };
+    if (lower(0) == 'p' && lower(1) == 'l' && lower(2) == 'y') {
         CheckPly(whole(), name);
     } else if (hint == "stl" || hint == "STL") {
         CheckStlHeader(head, file_bytes, name);
