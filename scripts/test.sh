@@ -25,7 +25,7 @@ bash scripts/test-view.sh build
 # The suite again under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan).
 bash scripts/test-sanitize.sh
 
-# Every reader of untrusted bytes under libFuzzer, FUZZ_SECONDS (default 20) per target.
+# Every reader of untrusted bytes under libFuzzer: seeds, regression inputs and a fixed-seed run.
 bash scripts/fuzz.sh
 
 # The robot build: core, mapper, drivers and io without Embree, Bullet or assimp.
