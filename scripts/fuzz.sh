@@ -4,7 +4,7 @@
 # executed. Exit status non-zero if any target found a crash, a sanitizer report, a leak, an
 # uncaught exception or a runaway allocation (> 2 GB).
 # By default (CI) each target replays its seeds and regression inputs, then makes a fixed number
-# of mutations from a fixed seed: the run is the same on every machine, so CI passes or fails
+# of mutations from a fixed seed: nearly the same inputs on every machine, so CI passes or fails
 # for a reason anyone can reproduce (about 3 minutes in all). Exploring for new findings is a
 # separate, time-bounded run with a fresh seed:
 #   FUZZ_SECONDS   explore: seconds per target, random seed (unset: the fixed CI run)
