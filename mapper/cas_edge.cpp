@@ -15,7 +15,9 @@
 //      neighbours than a surface; among such unsupported candidates only the certainty peak of
 //      each window (cas_median's rule) marks an object, and the object's cell is the one that
 //      holds the certainty-weighted centroid of the peak's same-height 3 x 3 block.
-// So, with T = cas_trail's output and M = median(T):
+// So, with T = cas_trail's output and M = the median of T's votes (mapper/ground.hpp: with
+// unknown = nan a removed known cell votes with the local ground estimate instead of leaving a
+// hole, and a filled cell does not vote; otherwise T itself):
 //   candidate  a known (c > 0) cell cas_trail left untouched with |h - M| > support_tol_m;
 //   surface    a candidate with >= edge_min known window cells (itself included) within
 //              edge_tol_m of h: out = h;
@@ -23,7 +25,7 @@
 //              window (ties: first in row-major order): out = h at the cell of the
 //              certainty-weighted centroid of the known cells of its 3 x 3 within edge_tol_m
 //              of its height (that cell's own h; the peak's h if that cell is not in the set);
-//   out = M    everywhere else.
+//   out = M    everywhere else (a cell that did not vote keeps T's value: CAS's fill, or NaN).
 // cas_hybrid (docs/paper-notes.md "cas_hybrid") is cas_edge with three changes:
 //   - cas_median's surface rule for the known cells that stand out from M but are not
 //     candidates (cas_trail removed them, or they lie within k of the map's border): one with
@@ -51,6 +53,7 @@
 
 #include "casmap/mapper/cas_surface.hpp"
 #include "casmap/mapper/filters.hpp"
+#include "casmap/mapper/ground.hpp"
 
 namespace casmap::mapper {
 namespace {
@@ -64,7 +67,9 @@ FilterResult EdgeFilter(const core::MapF& elevation,
     CasParams cas = params.cas;
     cas.support = Support::kHeight;
     FilterResult out = CasFilter(elevation, certainty, cas);  // cas_trail, classes kept
-    const core::MapF median = MedianFilter(out.elevation, params.baseline);
+    // With unknown = nan: removed known cells vote for the local ground, filled cells not at all.
+    const core::MapF votes = GroundRelativeVotes(elevation, certainty, cas, out);
+    const core::MapF median = MedianFilter(votes, params.baseline);
     const auto tol = static_cast<float>(cas.support_tol_m);
     const auto edge_tol = static_cast<float>(cas.edge_tol_m);
     const auto surface_tol = static_cast<float>(cas.surface_tol_m);
@@ -132,6 +137,8 @@ FilterResult EdgeFilter(const core::MapF& elevation,
                 const float c = certainty.data[n];
                 out.elevation.data[n] =
                     hybrid && prior > 0.0F && !std::isnan(b) ? b + c / (c + prior) * (h - b) : h;
+            } else if (std::isnan(votes.data[n])) {
+                // A filled cell that did not vote (unknown = nan) keeps CAS's fill value.
             } else if (hybrid && candidate[n] == 0 && known(n) &&
                        !(std::abs(elevation.data[n] - median.data[n]) <= tol)) {
                 out.elevation.data[n] = detail::SurfaceMedian(elevation, certainty, i, j, k,

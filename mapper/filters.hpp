@@ -55,7 +55,9 @@ void CasFilterInto(const core::MapF& elevation,
 /// support_tol_m; objects = candidates with >= edge_min known window cells within edge_tol_m of
 /// their height (surfaces: box edges, corners) or the highest certainty among the candidates of
 /// their window (ties: first in row-major order). Output: h on objects, M elsewhere. Classes =
-/// cas_trail's. Throws InputError as RunFilter.
+/// cas_trail's. With unknown = nan, M is the median of GroundRelativeVotes (mapper/ground.hpp):
+/// removed known cells vote for the local ground, filled cells keep their fill value. Throws
+/// InputError as RunFilter.
 [[nodiscard]] FilterResult CasEdgeFilter(const core::MapF& elevation,
                                          const core::MapF& certainty,
                                          const FilterParams& params);

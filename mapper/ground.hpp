@@ -1,0 +1,37 @@
+#pragma once
+
+// Ground-relative pieces shared by the median-based CAS variants (docs/paper-notes.md
+// "Ground-relative votes on terrain"). The paper's removal branch sets a cell to 0 m, which is
+// its floor's height only because the paper's floor is the datum (and unknown cells hold 0 m).
+// With unknown = nan a map makes no such claim: a removed cell must stand for the ground around
+// it, not for a hole (which leaves a median to the obstacle cells that survived) or the datum.
+
+#include "casmap/core/grid.hpp"
+#include "casmap/mapper/filters.hpp"
+
+namespace casmap::mapper {
+
+/// Local ground estimate: per cell, the `quantile` (0..1, lower order statistic) of the known
+/// heights (c > 0, not NaN) of the (2k+1)^2 window clipped to the map; 0 where the window has
+/// none. cas_terrain uses it with k = ground_k (9 x 9), GroundRelativeVotes with the CAS window
+/// (k, 5 x 5: on training terrain a 9 x 9 window rounded steps and slope ends in sparse scans).
+[[nodiscard]] core::MapF LocalGroundEstimate(const core::MapF& elevation,
+                                             const core::MapF& certainty,
+                                             int k,
+                                             double quantile);
+
+/// The map a median-based CAS variant takes its median of, given CAS's `cleaned` result on
+/// (`elevation`, `certainty`) (e.g. cas_trail's, as cas_edge does):
+/// - unknown = zero, or ground = local: cleaned.elevation as it is (a removed cell holds 0 m,
+///   the paper's floor and datum, or cas_terrain's local ground);
+/// - unknown = nan with ground = zero: a known cell (c > 0, not NaN) that CAS removed votes with
+///   the local ground estimate of the CAS window (k = params.k, params.ground_quantile) instead
+///   of NaN, and a never-observed cell CAS filled does not vote (NaN): the median then runs over
+///   observed cells only, as the NaN-mode median does.
+/// Same size as `elevation`; deterministic (no floating-point reduction).
+[[nodiscard]] core::MapF GroundRelativeVotes(const core::MapF& elevation,
+                                             const core::MapF& certainty,
+                                             const CasParams& params,
+                                             const FilterResult& cleaned);
+
+}  // namespace casmap::mapper

@@ -1,0 +1,232 @@
+// Ground-relative removal (mapper/ground.hpp) and cas_edge on closed-form terrain with unknown =
+// nan: a slope crossing 0 m, a step, a ditch (none flattened, every observed cell stays known)
+// and a pole on a slope (pole kept bit for bit, its trail set to the slope, not to NaN or 0 m).
+#include "casmap/mapper/ground.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "casmap/mapper/filters.hpp"
+#include "synthetic_maps.hpp"
+
+namespace casmap::mapper {
+namespace {
+
+using test_maps::Noise;
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// Terrain as a vehicle's scanner sees it: one scan line every 3rd row (`line_step`; the rows
+// between never observed: NaN, c = 0), every cell of a line hit once (c = 3), +-2 mm noise. On a
+// slope of 2 cm per row the lines are 6 cm apart in height, so a cell has only its own line's 4
+// neighbours within cas_trail's support_tol_m (5 cm) and cas_trail removes it as unsupported: the
+// case where cas_edge's median, with removed cells left unknown (NaN), lost the terrain.
+struct Terrain {
+    core::MapF truth, h, c;
+};
+
+template <typename F>
+Terrain MakeTerrain(int rows, int cols, F height, int line_step = 3) {
+    Terrain t{core::MapF(rows, cols), core::MapF(rows, cols), core::MapF(rows, cols, 3.0F)};
+    for (int i = 0; i < rows; ++i) {
+        for (int j = 0; j < cols; ++j) {
+            t.truth.at(i, j) = height(i, j);
+            t.h.at(i, j) = t.truth.at(i, j) + Noise(i, j);
+            if (i % line_step != 0) {
+                t.h.at(i, j) = kNaN;
+                t.c.at(i, j) = 0.0F;
+            }
+        }
+    }
+    return t;
+}
+
+FilterParams NanParams() {
+    FilterParams params;
+    params.Set("unknown", "nan");
+    return params;
+}
+
+bool Known(const Terrain& t, int i, int j) {
+    return t.c.at(i, j) > 0.0F && !std::isnan(t.h.at(i, j));
+}
+
+// Largest |out - truth| over the interior cells the raw map knows; also counts the ones the
+// output lost (NaN where the raw map had a height).
+struct Check {
+    double worst_m = 0.0;
+    int lost = 0;
+};
+
+template <typename Skip>
+Check Compare(const core::MapF& out, const Terrain& t, int margin, Skip skip) {
+    Check r;
+    for (int i = margin; i < t.truth.rows - margin; ++i) {
+        for (int j = margin; j < t.truth.cols - margin; ++j) {
+            if (!Known(t, i, j) || skip(i, j)) {
+                continue;
+            }
+            if (std::isnan(out.at(i, j))) {
+                ++r.lost;
+                continue;
+            }
+            r.worst_m = std::max(r.worst_m, std::abs(static_cast<double>(out.at(i, j)) -
+                                                     static_cast<double>(t.truth.at(i, j))));
+        }
+    }
+    return r;
+}
+
+const auto kNone = [](int, int) { return false; };
+
+// A 39 deg slope (2 cm per 25 mm row) from -0.6 m to +0.6 m.
+Terrain Slope(int line_step = 3) {
+    return MakeTerrain(
+        60, 40, [](int i, int) { return -0.6F + 0.02F * static_cast<float>(i); }, line_step);
+}
+
+bool SameBits(const core::MapF& a, const core::MapF& b) {
+    return a.data.size() == b.data.size() &&
+           std::memcmp(a.data.data(), b.data.data(), 4 * a.data.size()) == 0;
+}
+
+CasParams TrailParams(Unknown unknown, Ground ground) {
+    CasParams cas;
+    cas.support = Support::kHeight;
+    cas.unknown = unknown;
+    cas.ground = ground;
+    return cas;
+}
+
+TEST(GroundRelativeVotes, AreCasOutputInThePapersConventionAndWithLocalGround) {
+    const Terrain t = Slope();
+    for (const CasParams& p :
+         {TrailParams(Unknown::kZero, Ground::kZero), TrailParams(Unknown::kNaN, Ground::kLocal)}) {
+        const FilterResult out = CasFilter(t.h, t.c, p);
+        int removed = 0;
+        for (std::size_t n = 0; n < out.classes.data.size(); ++n) {
+            removed += out.classes.data[n] == static_cast<std::uint8_t>(PixelClass::kRemoved);
+        }
+        EXPECT_GT(removed, 0);  // the cells the rule is about exist here too
+        EXPECT_TRUE(SameBits(GroundRelativeVotes(t.h, t.c, p, out), out.elevation));
+    }
+}
+
+TEST(GroundRelativeVotes, RemovedCellsVoteTheirWindowsGroundFilledCellsNot) {
+    const Terrain t = Slope();
+    const CasParams cas = TrailParams(Unknown::kNaN, Ground::kZero);
+    const FilterResult out = CasFilter(t.h, t.c, cas);
+    const core::MapF votes = GroundRelativeVotes(t.h, t.c, cas, out);
+    int removed = 0;
+    int filled = 0;
+    std::vector<float> v;
+    for (int i = 0; i < t.h.rows; ++i) {
+        for (int j = 0; j < t.h.cols; ++j) {
+            const auto cls = static_cast<PixelClass>(out.classes.at(i, j));
+            if (cls == PixelClass::kRemoved && Known(t, i, j)) {
+                v.clear();  // the CAS window's known heights, clipped to the map
+                for (int r = std::max(0, i - 2); r <= std::min(t.h.rows - 1, i + 2); ++r) {
+                    for (int s = std::max(0, j - 2); s <= std::min(t.h.cols - 1, j + 2); ++s) {
+                        if (Known(t, r, s)) {
+                            v.push_back(t.h.at(r, s));
+                        }
+                    }
+                }
+                std::sort(v.begin(), v.end());
+                EXPECT_EQ(votes.at(i, j), v[(v.size() - 1) / 2]) << i << "," << j;
+                EXPECT_TRUE(std::isnan(out.elevation.at(i, j)));  // CAS left a hole there
+                ++removed;
+            } else if (cls == PixelClass::kFilled) {
+                EXPECT_FALSE(std::isnan(out.elevation.at(i, j)));
+                EXPECT_TRUE(std::isnan(votes.at(i, j))) << i << "," << j;
+                ++filled;
+            } else {
+                const float a = votes.at(i, j);
+                const float b = out.elevation.at(i, j);
+                EXPECT_TRUE(std::memcmp(&a, &b, 4) == 0) << i << "," << j;
+            }
+        }
+    }
+    EXPECT_GT(removed, 100);  // on this slope cas_trail removes most observed cells
+    EXPECT_GT(filled, 0);
+}
+
+TEST(CasEdgeOnTerrain, KeepsEveryObservedCellOfASlopeAtItsHeight) {
+    const Terrain t = Slope();
+    const FilterResult out = CasEdgeFilter(t.h, t.c, NanParams());
+    const Check r = Compare(out.elevation, t, 0, kNone);
+    EXPECT_EQ(r.lost, 0);
+    EXPECT_LT(r.worst_m, 0.015);  // the slope stays a slope (not pulled to 0 m, not flattened)
+}
+
+TEST(CasEdgeOnTerrain, KeepsAStepOnASlope) {
+    // A 0.2 m step down at column 20 along the slope (a vertical wall).
+    const Terrain t = MakeTerrain(60, 40, [](int i, int j) {
+        return -0.6F + 0.02F * static_cast<float>(i) - (j >= 20 ? 0.2F : 0.0F);
+    });
+    const FilterResult out = CasEdgeFilter(t.h, t.c, NanParams());
+    // Every observed cell keeps its height within 1.5 cm, the two sides of the step included:
+    // the step is not rounded into a ramp.
+    const Check r = Compare(out.elevation, t, 0, kNone);
+    EXPECT_EQ(r.lost, 0);
+    EXPECT_LT(r.worst_m, 0.015);
+    EXPECT_NEAR(out.elevation.at(30, 19), t.truth.at(30, 19), 0.015);  // high side
+    EXPECT_NEAR(out.elevation.at(30, 20), t.truth.at(30, 20), 0.015);  // low side
+}
+
+TEST(CasEdgeOnTerrain, KeepsADitchAcrossASlope) {
+    // A 7-row-wide, 0.3 m deep ditch across rows 27-33 (vertical walls; scan lines 27, 30 and
+    // 33 in it).
+    const Terrain t = MakeTerrain(60, 40, [](int i, int) {
+        const float z = -0.6F + 0.02F * static_cast<float>(i);
+        return i >= 27 && i <= 33 ? z - 0.3F : z;
+    });
+    const FilterResult out = CasEdgeFilter(t.h, t.c, NanParams());
+    const Check r = Compare(out.elevation, t, 0, kNone);
+    EXPECT_EQ(r.lost, 0);
+    EXPECT_LT(r.worst_m, 0.015);  // not filled, its walls not rounded
+    EXPECT_NEAR(out.elevation.at(30, 10), t.truth.at(30, 10), 0.015);  // its bottom
+    EXPECT_NEAR(out.elevation.at(27, 10), t.truth.at(27, 10), 0.015);  // its first line
+    EXPECT_NEAR(out.elevation.at(24, 10), t.truth.at(24, 10), 0.015);  // the line before it
+}
+
+TEST(CasEdgeOnTerrain, KeepsAPoleOnASlopeAndSetsItsTrailToTheSlope) {
+    // The slope seen on every row (a table run). A ground estimate from the 5 x 5 window needs
+    // the trail to be less than half of the window's known cells: in a scan every 3rd row a
+    // five-cell trail is 4 of 9 known cells around its middle and raises the estimate.
+    Terrain t = Slope(1);
+    t.h.at(39, 20) = t.truth.at(39, 20) + 0.914F;  // a one-cell pole seen 80 times
+    t.c.at(39, 20) = 240.0F;
+    // One-hit mixed pixels behind it along the beams (rows 40-44 of its column), falling from
+    // its top to the slope: cas_trail removes them (no known neighbour at their height).
+    const float trail[] = {0.72F, 0.55F, 0.41F, 0.3F, 0.17F};
+    for (int n = 0; n < 5; ++n) {
+        t.h.at(40 + n, 20) = t.truth.at(40 + n, 20) + trail[n];
+    }
+    const FilterResult out = CasEdgeFilter(t.h, t.c, NanParams());
+    for (int n = 0; n < 5; ++n) {
+        EXPECT_EQ(out.classes.at(40 + n, 20), static_cast<std::uint8_t>(PixelClass::kRemoved));
+    }
+    EXPECT_EQ(out.elevation.at(39, 20), t.h.at(39, 20));  // the pole, bit for bit
+    for (int n = 0; n < 5; ++n) {
+        const float v = out.elevation.at(40 + n, 20);
+        EXPECT_FALSE(std::isnan(v)) << n;                    // not a hole
+        EXPECT_NEAR(v, t.truth.at(40 + n, 20), 0.015) << n;  // the slope under the trail
+    }
+    // The rest of the slope as in the plain case (the 2 outermost rows and columns left out:
+    // on a densely seen 39 deg slope the median clipped at the map edge is 2 cm off).
+    const Check r =
+        Compare(out.elevation, t, 2, [](int i, int j) { return j == 20 && i >= 39 && i <= 44; });
+    EXPECT_EQ(r.lost, 0);
+    EXPECT_LT(r.worst_m, 0.015);
+}
+
+}  // namespace
+}  // namespace casmap::mapper
