@@ -289,7 +289,7 @@ std::vector<T> ReadBeams(const h5::FileReader& r, const std::string& name, hsize
 double RequiredDouble(const h5::FileReader& r, const std::string& object, const std::string& name) {
     const std::optional<double> v = r.ReadDouble(object, name);
     if (!v || !std::isfinite(*v)) {
-        throw r.Error(h5::AttributeWhere(object, name), v ? std::to_string(*v) : "",
+        throw r.Error(h5::AttributeWhere(object, name), v ? core::FormatNumber(*v) : "",
                       v ? "must be finite" : "required attribute is missing");
     }
     return *v;
@@ -306,11 +306,11 @@ core::Scan ReadScanGeometry(const h5::FileReader& r, std::size_t beams, bool any
     }
     if (!(proto.angle_step_rad > 0.0 && proto.angle_step_rad <= 0.1)) {
         throw r.Error(h5::AttributeWhere("/scans", "angle_step_rad"),
-                      std::to_string(proto.angle_step_rad), "allowed: 0 < step <= 0.1 rad");
+                      core::FormatNumber(proto.angle_step_rad), "allowed: 0 < step <= 0.1 rad");
     }
     if (!(proto.beam_period_s >= 0.0 && proto.beam_period_s <= 0.01)) {
         throw r.Error(h5::AttributeWhere("/scans", "beam_period_s"),
-                      std::to_string(proto.beam_period_s), "allowed: 0..0.01 s");
+                      core::FormatNumber(proto.beam_period_s), "allowed: 0..0.01 s");
     }
     if (auto offsets = r.ReadDoubles("/scans", "beam_time_offset_s", limits::kMaxBeamsPerScan)) {
         if (offsets->size() != beams) {
@@ -378,9 +378,10 @@ void ReadScans(const h5::FileReader& r, RunData& data) {
                           core::FormatNumber(stamps[i]), "must be finite");
         }
         if (i > 0 && !(stamps[i] > stamps[i - 1])) {
-            throw r.Error(
-                "/scans/stamp_s[" + std::to_string(i) + "]", core::FormatNumber(stamps[i]),
-                "stamps must increase strictly (previous " + std::to_string(stamps[i - 1]) + ")");
+            throw r.Error("/scans/stamp_s[" + std::to_string(i) + "]",
+                          core::FormatNumber(stamps[i]),
+                          "stamps must increase strictly (previous " +
+                              core::FormatNumber(stamps[i - 1]) + ")");
         }
         s.stamp_s = stamps[i];
         s.beams.resize(beams);
@@ -455,7 +456,7 @@ void ReadPoses(const h5::FileReader& r, RunData& data) {
         }
         if (!q.coeffs().allFinite() || std::abs(q.norm() - 1.0) > 1e-3) {
             throw r.Error("/poses/quat_xyzw[" + std::to_string(i) + "]",
-                          "norm " + std::to_string(q.norm()), "must be a unit quaternion");
+                          "norm " + core::FormatNumber(q.norm(), 6), "must be a unit quaternion");
         }
         q.normalize();
         samples[i] = core::TimedPose{stamps[i], core::Pose{t, q}};
