@@ -5,7 +5,6 @@
 
 #include <filesystem>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,7 +12,7 @@
 #include "bindings.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/scene_file.hpp"
-#include "casmap/io/sensor_config.hpp"
+#include "casmap/pipeline/scan_at.hpp"
 #include "casmap/pipeline/sim_pipeline.hpp"
 #include "casmap/sim/ground_truth.hpp"
 #include "casmap/sim/simulator.hpp"
@@ -39,30 +38,17 @@ std::shared_ptr<LoadedScene> LoadSceneFile(const std::filesystem::path& path) {
     return s;
 }
 
-/// (x_m, y_m, z_m, roll_deg, pitch_deg, yaw_deg), as `casmap scan --pose`.
-core::Pose PoseOf(const std::vector<double>& v) {
-    if (v.size() != 6) {
-        throw MakeInputError("", "pose", std::to_string(v.size()) + " numbers",
-                             "must be six numbers X,Y,Z,ROLL_DEG,PITCH_DEG,YAW_DEG");
-    }
-    constexpr double kDeg = std::numbers::pi / 180.0;
-    return core::PoseFromXyzRpy({v[0], v[1], v[2]}, {v[3] * kDeg, v[4] * kDeg, v[5] * kDeg});
-}
-
 py::dict ScanAt(const LoadedScene& scene,
                 const std::vector<double>& pose_values,
                 std::uint64_t seed,
                 const std::optional<std::string>& sensor,
                 bool ideal) {
-    const core::Pose pose = PoseOf(pose_values);
+    const core::Pose pose = pipeline::PoseFromXyzRpyDeg(pose_values);  // as `casmap scan --pose`
     sim::ScanResult r;
     {
         py::gil_scoped_release release;
-        sensor_models::Lms200Config config;
-        if (sensor) {
-            config = io::LoadLms200Config(*sensor);
-        }
-        config.ideal = config.ideal || ideal;
+        const sensor_models::Lms200Config config =
+            pipeline::MakeScanSensorConfig({sensor.value_or(""), ideal, {}, {}});
         const sensor_models::Lms200Model model(config, seed);
         r = sim::CastScanAt(*scene.world, model, pose, 0.0, 0);  // as `casmap scan`
     }
