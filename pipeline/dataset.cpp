@@ -1,10 +1,12 @@
 #include "casmap/pipeline/dataset.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <fstream>
 #include <sstream>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/dataset_spec_file.hpp"
@@ -127,10 +129,32 @@ std::vector<std::size_t> ShardIndices(std::size_t count, std::size_t shard, std:
     return out;
 }
 
+void DatasetOptions::Validate() const {
+    const core::Check check;
+    check.That(threads >= 1, "threads", threads, "allowed: >= 1");
+    check.That(shards >= 1, "shards", shards, "allowed: >= 1");
+    check.That(shard < shards, "shard", shard, "allowed: 0 <= shard < shards");
+}
+
+void ParseShard(std::string_view text, DatasetOptions& options, const std::string& field) {
+    const std::size_t slash = text.find('/');
+    std::size_t i = 0;
+    std::size_t k = 0;
+    const char* end = text.data() + text.size();
+    const bool ok =
+        slash != std::string_view::npos &&
+        std::from_chars(text.data(), text.data() + slash, i).ptr == text.data() + slash &&
+        std::from_chars(text.data() + slash + 1, end, k).ptr == end && k > 0 && i < k;
+    core::Check().That(ok, field, text, "expected I/K with 0 <= I < K");
+    options.shard = i;
+    options.shards = k;
+}
+
 DatasetSummary RunDataset(const scenegen::DatasetSpec& spec,
                           const DatasetContext& context,
                           const DatasetOptions& options,
                           const DistributedSession& session) {
+    options.Validate();
     const auto start = std::chrono::steady_clock::now();
     if (session.rank() == 0) {
         io::EnsureDirectory(context.out_dir / "samples");

@@ -14,6 +14,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "casmap/pipeline/distributed.hpp"
@@ -76,7 +77,14 @@ struct DatasetOptions {
     std::size_t shard = 0;
     std::size_t shards = 1;
     DatasetProgressFn progress;  // called from worker threads, serialised
+
+    /// threads >= 1, shards >= 1, shard < shards: InputError naming the field.
+    void Validate() const;
 };
+
+/// "I/K" (0 <= I < K, whole numbers) -> options.shard = I, options.shards = K; InputError
+/// naming `field` otherwise.
+void ParseShard(std::string_view text, DatasetOptions& options, const std::string& field = "shard");
 
 struct DatasetSummary {
     std::size_t generated = 0;

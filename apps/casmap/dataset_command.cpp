@@ -6,14 +6,12 @@
 // when every sample succeeded, 64 + min(failed, 60) when some failed, 2 for bad input.
 #include <unistd.h>
 
-#include <charconv>
 #include <cstdio>
 #include <memory>
 #include <string>
 
 #include "apps/casmap/commands.hpp"
 #include "apps/casmap/flag_names.hpp"
-#include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/dataset_spec_file.hpp"
@@ -31,22 +29,6 @@ struct DatasetFlags {
     int count = -1;
     std::uint64_t seed = 0;
 };
-
-void ParseShard(const std::string& text, pipeline::DatasetOptions& options) {
-    const std::size_t slash = text.find('/');
-    std::size_t i = 0;
-    std::size_t k = 0;
-    const char* end = text.data() + text.size();
-    const bool ok =
-        slash != std::string::npos &&
-        std::from_chars(text.data(), text.data() + slash, i).ptr == text.data() + slash &&
-        std::from_chars(text.data() + slash + 1, end, k).ptr == end && k > 0 && i < k;
-    if (!ok) {
-        throw MakeInputError("", "--shard", text, "expected I/K with 0 <= I < K");
-    }
-    options.shard = i;
-    options.shards = k;
-}
 
 // One status line on a terminal: samples done, samples/s, ETA.
 void DrawProgress(const pipeline::DatasetProgress& p) {
@@ -73,7 +55,7 @@ void RunDatasetCommand(const DatasetFlags& flags, const CommonOptions& common, b
     spec.Validate(flags.spec);
     pipeline::DatasetOptions options;
     if (!flags.shard.empty()) {
-        ParseShard(flags.shard, options);
+        WithFlagNames({{"shard", "--shard"}}, [&] { pipeline::ParseShard(flags.shard, options); });
     }
     options.threads = core::ResolveThreads(common.threads);
     options.progress = DrawProgress;

@@ -211,3 +211,32 @@ TEST(DatasetSpecFile, EffectiveYamlReadsBackToTheSameSpec) {
 
 }  // namespace
 }  // namespace casmap::pipeline
+
+namespace casmap::pipeline {
+namespace {
+
+TEST(DatasetShard, ParsesIOverKAndNamesTheFieldOtherwise) {
+    DatasetOptions o;
+    ParseShard("2/5", o);
+    EXPECT_EQ(o.shard, 2U);
+    EXPECT_EQ(o.shards, 5U);
+    EXPECT_NO_THROW(o.Validate());
+    for (const char* bad : {"5/5", "1/0", "1", "a/2", "1/2/3", "-1/2", " 1/2"}) {
+        try {
+            ParseShard(bad, o, "--shard");
+            ADD_FAILURE() << bad;
+        } catch (const InputError& e) {
+            EXPECT_EQ(std::string(e.what()),
+                      "--shard = " + std::string(bad) + " (expected I/K with 0 <= I < K)");
+        }
+    }
+    o.shard = 3;
+    o.shards = 3;
+    EXPECT_THROW(o.Validate(), InputError);
+    o.shard = 0;
+    o.threads = 0;
+    EXPECT_THROW(o.Validate(), InputError);
+}
+
+}  // namespace
+}  // namespace casmap::pipeline
