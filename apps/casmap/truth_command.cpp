@@ -2,20 +2,15 @@
 //              [--rule highest|centre] [--keep-below-datum | --clamp-to-datum]
 // The exact ground-truth elevation map of a scene (sim/ground_truth.hpp) as a single-channel
 // 32-bit float TIFF in metres; rows along world x, columns along y (DESIGN.md "Map grid").
-#include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 
 #include "apps/casmap/commands.hpp"
-#include "casmap/core/grid.hpp"
+#include "apps/casmap/flag_names.hpp"
 #include "casmap/core/input_error.hpp"
-#include "casmap/io/image.hpp"
-#include "casmap/io/output_set.hpp"
-#include "casmap/io/scene_file.hpp"
 #include "casmap/pipeline/map_run.hpp"
-#include "casmap/sim/ground_truth.hpp"
+#include "casmap/pipeline/truth_file.hpp"
 
 namespace casmap::app {
 namespace {
@@ -31,41 +26,26 @@ struct TruthOptions {
 };
 
 void RunTruth(const TruthOptions& opt, const CommonOptions& common) {
-    const std::string ext = std::filesystem::path(opt.out).extension().string();
-    if (ext != ".tiff" && ext != ".tif") {
-        throw MakeInputError("command line", "--out", opt.out, "must end in .tiff or .tif");
-    }
-    if (!opt.png.empty() && std::filesystem::path(opt.png).extension() != ".png") {
-        throw MakeInputError("command line", "--png", opt.png, "must end in .png");
-    }
-    const core::GridGeometry grid = pipeline::ParseGrid(opt.grid, "--grid");
-    io::OutputSet outputs;  // TIFF and PNG: checked first, published together
-    const std::filesystem::path tiff_tmp = outputs.AddFile(opt.out, "--out");
-    const std::filesystem::path png_tmp =
-        opt.png.empty() ? std::filesystem::path() : outputs.AddFile(opt.png, "--png");
-    sim::GroundTruthOptions options;
-    options.rule =
-        opt.rule == "centre" ? sim::TruthRule::kCellCentre : sim::TruthRule::kHighestInCell;
     if (opt.keep_below_datum && opt.clamp_to_datum) {
         throw MakeInputError("command line", "--clamp-to-datum", "--keep-below-datum",
                              "the two flags exclude each other");
     }
+    pipeline::TruthFileOptions options{opt.scene, {}, opt.out, opt.png, {}};
+    options.truth.rule =
+        opt.rule == "centre" ? sim::TruthRule::kCellCentre : sim::TruthRule::kHighestInCell;
     if (opt.keep_below_datum || opt.clamp_to_datum) {
-        options.clamp_to_datum = opt.clamp_to_datum;
+        options.truth.clamp_to_datum = opt.clamp_to_datum;
     }  // neither: clamp unless the scene has terrain (sim::ClampsToDatum)
-    const core::Scene scene = io::LoadScene(opt.scene);
-    const core::MapF map = sim::GroundTruthElevation(scene, grid, options, common.threads);
-    io::WriteMapTiff(tiff_tmp, map);
-    if (!opt.png.empty()) {
-        io::PngStyle style;
-        style.title = "ground truth: " + opt.scene;
-        io::WriteMapPng(png_tmp, map, style);
-    }
-    outputs.Publish();
-    const auto [lo, hi] = std::minmax_element(map.data.begin(), map.data.end());
+    pipeline::TruthFileResult r;
+    WithCommandLineFlags({{"out", "--out"}, {"png", "--png"}},
+                         [&] {
+                             options.grid = pipeline::ParseGrid(opt.grid, "--grid");
+                             r = pipeline::WriteTruthFiles(options, common.threads);
+                         },
+                         {{"out", opt.out}, {"png", opt.png}});
     std::printf("wrote %s: %d x %d cells of %g m, elevation %.4f .. %.4f m (%s rule)\n",
-                opt.out.c_str(), grid.rows, grid.cols, grid.cell_m, static_cast<double>(*lo),
-                static_cast<double>(*hi), opt.rule.c_str());
+                opt.out.c_str(), options.grid.rows, options.grid.cols, options.grid.cell_m,
+                static_cast<double>(r.min_m), static_cast<double>(r.max_m), opt.rule.c_str());
 }
 
 }  // namespace
