@@ -186,4 +186,14 @@ struct SweepResult {
 /// pole framed, the chosen one starred). Creates DIR. Returns the sweep.json text.
 std::string WriteSweepOutputs(const std::filesystem::path& dir, const SweepResult& result);
 
+/// The sweep as `casmap sweep` runs it: validates `options` and checks `json_copy` (an extra
+/// copy of sweep.json; empty: none; InputError with the path as `where`, field "json") before
+/// any work, runs RunSweep in a DistributedSession of its own (MPI under mpirun/srun, else one
+/// rank; options.session is replaced), and on rank 0 writes WriteSweepOutputs(out_dir) and the
+/// copy. Returns the result on rank 0 (its options.session cleared), nullopt on other ranks.
+[[nodiscard]] std::optional<SweepResult> RunSweepToFolder(SweepOptions options,
+                                                          const std::filesystem::path& out_dir,
+                                                          const std::string& json_copy,
+                                                          const core::ProgressFn& progress = {});
+
 }  // namespace casmap::pipeline

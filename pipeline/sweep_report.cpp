@@ -8,7 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include "casmap/io/atomic_file.hpp"
+#include "casmap/io/output_set.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
+#include "casmap/pipeline/distributed.hpp"
 #include "casmap/pipeline/map_run.hpp"
 #include "casmap/pipeline/sweep.hpp"
 
@@ -287,6 +289,31 @@ std::string WriteSweepOutputs(const fs::path& dir, const SweepResult& result) {
         WriteHeatMap(dir / "heatmap.png", h);
     }
     return json;
+}
+
+std::optional<SweepResult> RunSweepToFolder(SweepOptions options,
+                                            const std::filesystem::path& out_dir,
+                                            const std::string& json_copy,
+                                            const core::ProgressFn& progress) {
+    options.Validate();  // bad input fails before any work
+    if (!json_copy.empty()) {
+        io::CheckOutputPath(json_copy, "json");
+    }
+    const DistributedSession session;
+    options.session = &session;
+    if (session.rank() == 0) {
+        io::EnsureDirectory(out_dir);
+    }
+    SweepResult result = RunSweep(options, progress);
+    result.options.session = nullptr;  // the session ends here
+    if (session.rank() != 0) {
+        return std::nullopt;  // rank 0 writes every output
+    }
+    const std::string json = WriteSweepOutputs(out_dir, result);
+    if (!json_copy.empty()) {
+        io::WriteTextAtomically(json_copy, json);
+    }
+    return result;
 }
 
 }  // namespace casmap::pipeline

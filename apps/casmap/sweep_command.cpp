@@ -6,15 +6,13 @@
 // default out/sweep; rank 0 under mpirun): sweep.json, runs/*.yaml, heatmap.png (2 axes).
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "apps/casmap/commands.hpp"
 #include "apps/casmap/flag_names.hpp"
 #include "apps/casmap/progress_bar.hpp"
-#include "casmap/io/atomic_file.hpp"
-#include "casmap/io/output_set.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
-#include "casmap/pipeline/distributed.hpp"
 #include "casmap/pipeline/sweep.hpp"
 
 namespace casmap::app {
@@ -67,33 +65,23 @@ void RunSweep(SweepFlags& flags, const CommonOptions& common) {
     }
     opt.tests = pipeline::ParseTests(flags.tests, "--tests");
     opt.threads = common.threads;
-    opt.Validate();  // bad input exits 2 before any work
-    if (!flags.json.empty()) {
-        io::CheckOutputPath(flags.json, "--json");
-    }
-    const pipeline::DistributedSession session;  // MPI under mpirun/srun, else one rank
-    opt.session = &session;
-    if (session.rank() == 0) {
-        io::EnsureDirectory(flags.out);
-    }
-    pipeline::SweepResult result;
+    std::optional<pipeline::SweepResult> result;
     {
         ProgressBar bar("sweep");
-        result = pipeline::RunSweep(opt, session.rank() == 0 ? bar.Fn() : core::ProgressFn{});
+        WithCommandLineFlags(
+            {{"json", "--json"}},
+            [&] { result = pipeline::RunSweepToFolder(opt, flags.out, flags.json, bar.Fn()); },
+            {{"json", flags.json}});
     }
-    if (session.rank() != 0) {
-        return;  // rank 0 writes every output
+    if (!result) {
+        return;  // not rank 0: rank 0 printed and wrote everything
     }
-    const std::string json = pipeline::WriteSweepOutputs(flags.out, result);
-    if (!flags.json.empty()) {
-        io::WriteTextAtomically(flags.json, json);
-    }
-    std::fputs(pipeline::SweepTable(result).c_str(), stdout);
+    std::fputs(pipeline::SweepTable(*result).c_str(), stdout);
     std::printf(
         "%zu point(s) x %zu training run(s) + %zu held-out in %.1f s on %d threads x %d "
         "rank(s) -> %s\n",
-        result.points.size(), result.run_names.size(), result.held_out.size(), result.elapsed_s,
-        result.threads, session.ranks(), flags.out.c_str());
+        result->points.size(), result->run_names.size(), result->held_out.size(), result->elapsed_s,
+        result->threads, result->ranks, flags.out.c_str());
 }
 
 }  // namespace
@@ -103,13 +91,14 @@ void AddSweepCommand(CLI::App& app, CommonOptions& common) {
     pipeline::SweepOptions& opt = flags->options;
     CLI::App* sub = app.add_subcommand(
         "sweep", "Grid over CAS parameters and speed: mean and spread of PI per point");
+    std::string axes = "NAME=FROM:TO:STEP with NAME in";  // the library's list, never stale
+    for (const std::string& name : pipeline::SweepableParameters()) {
+        axes += " " + name;
+    }
     sub->add_option("--set", flags->set,
-                    "NAME=FROM:TO:STEP, NAME in A, G, B, h_sum_min, a, E, k, speed, "
-                    "support_tol_m, support_min, ground_k, ground_quantile, edge_min, edge_tol_m, "
-                    "surface_tol_m, surface_min, surface_prior, median_mix, or a pre-filter's / "
-                    "the Kalman mapper's shadow.*, "
-                    "range_jump.*, kalman.* (with a pipeline running it; docs/commands/sweep.md); "
-                    "repeatable");
+                    axes +
+                        " (shadow.*, range_jump.*, kalman.* with a pipeline running them; "
+                        "docs/commands/sweep.md); repeatable");
     sub->add_option("--fix", opt.fixed, "fixed filter parameter NAME=VALUE; repeatable");
     sub->add_option("--courses", flags->courses, "training courses, e.g. 1-16, 4 or 1,4,7-9")
         ->capture_default_str();

@@ -4,7 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -387,6 +391,38 @@ TEST(RunSweep, RunCacheGivesTheUncachedResultByteForByte) {
     trail.grow = 2;
     trail.threads = 2;
     (void)both(trail);
+}
+
+TEST(RunSweepToFolder, WritesTheOutputsAndTheJsonCopyOnRankZero) {
+    const std::filesystem::path dir =
+        std::filesystem::path(testing::TempDir()) / "casmap_pipeline_sweep_folder";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    SweepOptions options;
+    options.axes = {{"A", {6.0, 12.0}}};
+    options.courses = {4};
+    options.threads = 1;
+    const std::optional<SweepResult> r =
+        RunSweepToFolder(options, dir / "out", (dir / "copy.json").string());
+    ASSERT_TRUE(r.has_value());  // one rank without mpirun
+    EXPECT_EQ(r->ranks, 1);
+    EXPECT_EQ(r->options.session, nullptr);
+    EXPECT_EQ(r->points.size(), 2U);
+    std::ifstream a(dir / "out" / "sweep.json");
+    std::ifstream b(dir / "copy.json");
+    const std::string written((std::istreambuf_iterator<char>(a)), {});
+    const std::string copy((std::istreambuf_iterator<char>(b)), {});
+    EXPECT_FALSE(written.empty());
+    EXPECT_EQ(written, copy);
+    // A copy in a missing folder fails before any work, naming the path and the field.
+    try {
+        (void)RunSweepToFolder(options, dir / "out2", (dir / "missing" / "c.json").string());
+        ADD_FAILURE() << "no InputError";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.field(), "json");
+        EXPECT_EQ(e.where(), (dir / "missing" / "c.json").string());
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "out2"));
 }
 
 }  // namespace
