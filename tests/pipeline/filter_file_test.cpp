@@ -10,6 +10,7 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/image.hpp"
 #include "casmap/mapper/synthetic_map.hpp"
+#include "tests/input_error_of.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -41,13 +42,7 @@ protected:
 };
 
 std::string FieldOf(const FilterFileOptions& o) {
-    try {
-        o.Validate();
-    } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
-        return e.field();
-    }
-    return "";
+    return test::FieldOfError([&] { o.Validate(); });
 }
 
 TEST_F(FilterFile, CasWritesTheFilteredMapAndItsClassesAsRunFilterComputesThem) {

@@ -13,19 +13,14 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/drivers/virtual_lms200.hpp"
 #include "casmap/io/run_file.hpp"
+#include "tests/input_error_of.hpp"
 
 namespace casmap::pipeline {
 namespace {
 namespace fs = std::filesystem;
 
 std::string FieldOfError(const RecordOptions& o) {
-    try {
-        o.Validate();
-    } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
-        return e.field();
-    }
-    return "";
+    return test::FieldOfError([&] { o.Validate(); });
 }
 
 TEST(Record, ChecksNameTheOptionsFields) {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "casmap/core/input_error.hpp"
+#include "tests/input_error_of.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -24,14 +25,7 @@ fs::path WallScene() {
     return path;
 }
 
-std::string ErrorOf(const auto& call) {
-    try {
-        call();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
+using test::ErrorOf;
 
 TEST(ScanSensorConfig, OverridesApplyOnlyWhenGiven) {
     const fs::path file = fs::path(testing::TempDir()) / "casmap_pipeline_scan_at_lms.yaml";
