@@ -19,7 +19,10 @@ namespace fs = std::filesystem;
 class FilterFile : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::path(testing::TempDir()) / "casmap_pipeline_filter_file";
+        // One folder per test: ctest runs the tests of a fixture in parallel processes.
+        dir_ = fs::path(testing::TempDir()) /
+               (std::string("casmap_pipeline_filter_file_") +
+                testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir_);
         fs::create_directories(dir_);
         mapper::SyntheticMapConfig config;
