@@ -182,6 +182,7 @@ FilterResult EdgeFilter(const core::MapF& elevation,
         out.elevation.data[o] =
             known(o) && std::abs(elevation.data[o] - h) <= edge_tol ? elevation.data[o] : h;
     }
+    RestoreTrustedCells(elevation, certainty, cas, out.elevation);  // mapper/ground.hpp
     return out;
 }
 

@@ -32,6 +32,7 @@
 
 #include "casmap/mapper/cas_surface.hpp"
 #include "casmap/mapper/filters.hpp"
+#include "casmap/mapper/ground.hpp"
 
 namespace casmap::mapper {
 
@@ -119,6 +120,7 @@ FilterResult CasMedianFilter(const core::MapF& elevation,
             }
         }
     }
+    RestoreTrustedCells(elevation, certainty, cas, out.elevation);  // mapper/ground.hpp
     return out;
 }
 

@@ -2,9 +2,11 @@
 // terrain").
 #include "casmap/mapper/ground.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "casmap/mapper/cas_variants.hpp"
 
@@ -42,6 +44,52 @@ core::MapF GroundRelativeVotes(const core::MapF& elevation,
         }
     }
     return votes;
+}
+
+void RestoreTrustedCells(const core::MapF& elevation,
+                         const core::MapF& certainty,
+                         const CasParams& params,
+                         core::MapF& filtered) {
+    const auto trusted = static_cast<float>(params.EffectiveG());
+    const auto tol = static_cast<float>(params.support_tol_m);
+    const auto edge_tol = static_cast<float>(params.edge_tol_m);
+    const int rows = elevation.rows;
+    const int cols = elevation.cols;
+    const auto index = [cols](int i, int j) {
+        return static_cast<std::size_t>(i) * static_cast<std::size_t>(cols) +
+               static_cast<std::size_t>(j);
+    };
+    // Decided on the filter's output as it came (no cell sees another's restoration).
+    std::vector<std::size_t> restore;
+    for (int i = 0; i < rows; ++i) {
+        for (int j = 0; j < cols; ++j) {
+            const std::size_t n = index(i, j);
+            const float h = elevation.data[n];
+            const float c = certainty.data[n];
+            const float y = filtered.data[n];
+            if (!(c > trusted) || std::isnan(h) || std::isnan(y) || !(std::abs(y - h) > tol)) {
+                continue;
+            }
+            bool halo = false;
+            for (int r = std::max(0, i - 1); r <= std::min(rows - 1, i + 1) && !halo; ++r) {
+                for (int s = std::max(0, j - 1); s <= std::min(cols - 1, j + 1); ++s) {
+                    const std::size_t o = index(r, s);
+                    const float ho = elevation.data[o];
+                    if (o != n && certainty.data[o] > c && !std::isnan(ho) &&
+                        filtered.data[o] == ho && std::abs(ho - h) <= edge_tol) {
+                        halo = true;
+                        break;
+                    }
+                }
+            }
+            if (!halo) {
+                restore.push_back(n);
+            }
+        }
+    }
+    for (const std::size_t n : restore) {
+        filtered.data[n] = elevation.data[n];
+    }
 }
 
 }  // namespace casmap::mapper

@@ -34,4 +34,16 @@ namespace casmap::mapper {
                                              const CasParams& params,
                                              const FilterResult& cleaned);
 
+/// Gives back its measured height to every known cell seen more than G times over
+/// (c > params.EffectiveG(): the certainty Eq. 10 asks of a whole window) that `filtered`
+/// moved by more than support_tol_m, unless a neighbour (3 x 3) that `filtered` kept at its
+/// measured height, seen more often than the cell, lies within edge_tol_m of its height
+/// (the halo of a pole the filter kept). Such a cell is a surface point, not a mixed pixel: on
+/// terrain the face of a tall obstacle whose top was never observed, which a median sets to the
+/// ground. NaN in `filtered` is left alone. cas_edge, cas_hybrid and cas_median end with it.
+void RestoreTrustedCells(const core::MapF& elevation,
+                         const core::MapF& certainty,
+                         const CasParams& params,
+                         core::MapF& filtered);
+
 }  // namespace casmap::mapper

@@ -228,5 +228,80 @@ TEST(CasEdgeOnTerrain, KeepsAPoleOnASlopeAndSetsItsTrailToTheSlope) {
     EXPECT_LT(r.worst_m, 0.015);
 }
 
+TEST(RestoreTrustedCells, GivesWellSeenCellsBackTheirHeightButNotAHalo) {
+    // Default CAS parameters: A = 12, G = 120. A 12 x 12 floor (c = 30) and a "filtered" map
+    // that set four cells to the floor: (2, 2) seen 400 times, (2, 8) seen 100 times (not more
+    // than G), (8, 2) seen 300 times beside a kept neighbour (8, 3) seen more often at its
+    // height (a halo), (8, 8) seen 200 times, filtered NaN.
+    core::MapF h(12, 12, 0.0F);
+    core::MapF c(12, 12, 30.0F);
+    const struct {
+        int i, j;
+        float h, c;
+    } cells[] = {{2, 2, 0.5F, 400.0F},
+                 {2, 8, 0.5F, 100.0F},
+                 {8, 2, 0.9F, 300.0F},
+                 {8, 3, 0.91F, 500.0F},
+                 {8, 8, 0.5F, 200.0F}};
+    for (const auto& x : cells) {
+        h.at(x.i, x.j) = x.h;
+        c.at(x.i, x.j) = x.c;
+    }
+    core::MapF filtered(12, 12, 0.0F);
+    filtered.at(8, 3) = 0.91F;  // kept as measured: the pole
+    filtered.at(8, 8) = kNaN;
+    const CasParams params;
+    ASSERT_EQ(params.EffectiveG(), 120.0);
+    core::MapF out = filtered;
+    RestoreTrustedCells(h, c, params, out);
+    EXPECT_EQ(out.at(2, 2), 0.5F);          // seen more than G times: its measured height
+    EXPECT_EQ(out.at(2, 8), 0.0F);          // not more than G: the filter's value
+    EXPECT_EQ(out.at(8, 2), 0.0F);          // the halo of a kept, better-seen neighbour
+    EXPECT_TRUE(std::isnan(out.at(8, 8)));  // NaN left alone
+    EXPECT_EQ(out.at(8, 3), 0.91F);         // the pole as it was
+    out.data.assign(filtered.data.begin(), filtered.data.end());
+    out.at(2, 2) = 0.47F;  // moved by 3 cm only (not more than support_tol_m): left
+    RestoreTrustedCells(h, c, params, out);
+    EXPECT_EQ(out.at(2, 2), 0.47F);
+}
+
+TEST(RestoreTrustedCells, KeepsTheFaceOfAnObstacleWhoseTopWasNeverSeen) {
+    // A slope scanned every 2nd row, and a 0.8 m block at rows 30-44, columns 15-24 whose top
+    // was never observed: only its front face, on scan line 30, was hit (heights 0.3-0.66 m
+    // above the slope, each seen 300 times). Half the known cells around the face are the
+    // slope, so the median puts it between; the face's measured heights are closer to the
+    // truth (the block's top).
+    Terrain t = MakeTerrain(
+        60, 40,
+        [](int i, int j) {
+            const float z = -0.6F + 0.02F * static_cast<float>(i);
+            return i >= 30 && i <= 44 && j >= 15 && j <= 24 ? z + 0.8F : z;
+        },
+        2);
+    for (int i = 30; i <= 44; ++i) {
+        for (int j = 15; j <= 24; ++j) {
+            t.h.at(i, j) = kNaN;
+            t.c.at(i, j) = 0.0F;
+        }
+    }
+    const float ground = -0.6F + 0.02F * 30.0F;
+    for (int j = 15; j <= 24; ++j) {
+        t.h.at(30, j) = ground + 0.3F + 0.04F * static_cast<float>(j - 15);
+        t.c.at(30, j) = 300.0F;
+    }
+    for (const FilterMethod method : {FilterMethod::kCasEdge, FilterMethod::kCasMedian}) {
+        const FilterResult out = RunFilter(method, t.h, t.c, NanParams());
+        for (int j = 15; j <= 24; ++j) {
+            EXPECT_EQ(out.elevation.at(30, j), t.h.at(30, j)) << ToString(method) << " " << j;
+        }
+        // The slope around it within 3 cm (the cells beside the face see it in their window).
+        const Check r = Compare(out.elevation, t, 0, [](int i, int j) {
+            return i >= 30 && i <= 44 && j >= 15 && j <= 24;
+        });
+        EXPECT_EQ(r.lost, 0) << ToString(method);
+        EXPECT_LT(r.worst_m, 0.03) << ToString(method);
+    }
+}
+
 }  // namespace
 }  // namespace casmap::mapper
