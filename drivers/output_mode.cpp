@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/drivers/telegram_detail.hpp"
 
@@ -76,18 +77,14 @@ std::uint8_t OutputMode::ReplyCommand() const {
 }
 
 void OutputMode::Validate(const Variant& variant) const {
-    if (HasMean() && (mean_scans < 2 || mean_scans > 250)) {
-        throw MakeInputError("LMS 200 output mode", "mean scans", std::to_string(mean_scans),
-                             "2..250");
-    }
+    const core::Check check("LMS 200 output mode");
+    check.That(!HasMean() || (mean_scans >= 2 && mean_scans <= 250), "mean scans", mean_scans,
+               "2..250");
     if (HasSubRange()) {
         const int beams = variant.BeamCount();
-        if (first_beam < 1 || first_beam > last_beam || last_beam > beams) {
-            throw MakeInputError(
-                "LMS 200 output mode", "sub-range",
-                std::to_string(first_beam) + "-" + std::to_string(last_beam),
-                "1 <= first <= last <= " + std::to_string(beams) + " (beams of the variant)");
-        }
+        check.That(first_beam >= 1 && first_beam <= last_beam && last_beam <= beams, "sub-range",
+                   std::to_string(first_beam) + "-" + std::to_string(last_beam),
+                   "1 <= first <= last <= " + std::to_string(beams) + " (beams of the variant)");
     }
 }
 
