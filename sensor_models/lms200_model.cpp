@@ -252,6 +252,76 @@ std::size_t SegmentLobes(std::span<const EchoSample> seg,
     return count;
 }
 
+// Echo energy of one sub-ray hit, Lambertian lidar equation E = w rho cos(theta) / r^2 scaled
+// by `scale` (sensor_model.md 4.2); a retro-reflector returns retro_gain x a white diffuser.
+// One expression for both hit layouts, so they agree bit for bit.
+inline double EchoEnergy(double weight,
+                         double distance_m,
+                         double cos_incidence,
+                         double reflectivity,
+                         bool retro,
+                         double retro_gain,
+                         double scale) {
+    // Branch-free forms of the ternary and std::clamp (x * 1.0 == x, and min(max()) equals
+    // clamp even for NaN and -0), so the loop over a pulse vectorises.
+    const double d = std::max(distance_m, 1e-3);
+    const double rho = reflectivity * (retro ? retro_gain : 1.0);
+    return weight * rho * std::min(std::max(cos_incidence, 0.0), 1.0) * scale / (d * d);
+}
+
+// The two hit layouts FormReturn accepts, behind one interface.
+struct HitList {
+    std::span<const SubrayHit> hits;
+    [[nodiscard]] std::size_t size() const { return hits.size(); }
+    [[nodiscard]] bool Valid(std::size_t i) const { return hits[i].valid(); }
+    [[nodiscard]] double Distance(std::size_t i) const { return hits[i].distance_m; }
+    [[nodiscard]] double Reflectivity(std::size_t i) const { return hits[i].reflectivity; }
+    [[nodiscard]] std::uint32_t SurfaceId(std::size_t i) const { return hits[i].surface_id; }
+    // energy[i] for i < count (valid hits only).
+    void Energies(
+        const double* weights, double gain, double scale, std::size_t count, double* energy) const {
+        for (std::size_t i = 0; i < count; ++i) {
+            const SubrayHit& h = hits[i];
+            if (h.valid()) {
+                energy[i] = EchoEnergy(weights[i], h.distance_m, h.cos_incidence, h.reflectivity,
+                                       h.retro_reflective, gain, scale);
+            }
+        }
+    }
+};
+
+struct HitArrays {
+    const SubrayHitArrays& hits;
+    [[nodiscard]] std::size_t size() const { return hits.count; }
+    [[nodiscard]] bool Valid(std::size_t i) const {
+        return hits.distance_m[i] < std::numeric_limits<float>::infinity();
+    }
+    [[nodiscard]] double Distance(std::size_t i) const {
+        return static_cast<double>(hits.distance_m[i]);
+    }
+    [[nodiscard]] double Reflectivity(std::size_t i) const {
+        return static_cast<double>(hits.reflectivity[i]);
+    }
+    [[nodiscard]] std::uint32_t SurfaceId(std::size_t i) const { return hits.surface_id[i]; }
+    // energy[i] for every i < count in one branch-free loop the compiler vectorises (a miss's
+    // value is garbage and never read; IEEE arithmetic does not trap).
+    void Energies(const double* __restrict weights,
+                  double gain,
+                  double scale,
+                  std::size_t count,
+                  double* __restrict energy) const {
+        const float* __restrict dist = hits.distance_m;
+        const float* __restrict cosi = hits.cos_incidence;
+        const float* __restrict refl = hits.reflectivity;
+        const std::uint8_t* __restrict retro = hits.retro_reflective;
+        for (std::size_t i = 0; i < count; ++i) {
+            energy[i] =
+                EchoEnergy(weights[i], static_cast<double>(dist[i]), static_cast<double>(cosi[i]),
+                           static_cast<double>(refl[i]), retro[i] != 0, gain, scale);
+        }
+    }
+};
+
 }  // namespace
 
 PulseRng::PulseRng(std::uint64_t seed,
@@ -519,20 +589,21 @@ double Lms200Model::MaterialBiasM(std::uint32_t surface_id) const {
     return (2.0 * u - 1.0) * config_.MaterialBiasMaxM();
 }
 
-PulseResult Lms200Model::IdealReturn(std::span<const SubrayHit> hits) const {
+template <class Hits>
+PulseResult Lms200Model::IdealReturn(const Hits& hits) const {
     PulseResult r;
     const core::Lms200Format& f = config_.format;
-    if (hits.empty() || !hits[0].valid() || hits[0].distance_m > config_.max_trace_range_m) {
+    if (hits.size() == 0 || !hits.Valid(0) || hits.Distance(0) > config_.max_trace_range_m) {
         r.beam.status = core::BeamStatus::kNoReturn;
         r.beam.raw = f.CodeFor(core::BeamStatus::kNoReturn);
         r.label = core::BeamLabel::kNoTarget;
         return r;
     }
-    r.true_range_m = static_cast<float>(hits[0].distance_m);
-    r.echo_range_m = hits[0].distance_m;
+    r.true_range_m = static_cast<float>(hits.Distance(0));
+    r.echo_range_m = hits.Distance(0);
     r.beam.status = core::BeamStatus::kOk;
     r.beam.range_m = r.true_range_m;
-    r.beam.raw = f.EncodeRange(hits[0].distance_m);
+    r.beam.raw = f.EncodeRange(hits.Distance(0));
     r.label = core::BeamLabel::kValid;
     return r;
 }
@@ -582,14 +653,23 @@ void Lms200Model::Encode(double range_m,
 
 PulseResult Lms200Model::FormReturn(const PulseContext& pulse,
                                     std::span<const SubrayHit> hits) const {
+    return FormReturnImpl(pulse, HitList{hits});
+}
+
+PulseResult Lms200Model::FormReturn(const PulseContext& pulse, const SubrayHitArrays& hits) const {
+    return FormReturnImpl(pulse, HitArrays{hits});
+}
+
+template <class Hits>
+PulseResult Lms200Model::FormReturnImpl(const PulseContext& pulse, const Hits& hits) const {
     if (config_.ideal) {
         return IdealReturn(hits);
     }
     PulseResult r;
     const core::Lms200Format& f = config_.format;
     const double max_range = f.MaxRangeM();
-    if (!hits.empty() && hits[0].valid()) {
-        r.true_range_m = static_cast<float>(hits[0].distance_m);
+    if (hits.size() > 0 && hits.Valid(0)) {
+        r.true_range_m = static_cast<float>(hits.Distance(0));
     }
     // Echo energies, Lambertian lidar equation E = w rho cos(theta) / r^2, scaled so that a
     // full-footprint 10 % target at R10 gives exactly the threshold 1 (sensor_model.md 4.2).
@@ -602,26 +682,21 @@ PulseResult Lms200Model::FormReturn(const PulseContext& pulse,
     double r_hi = -r_lo;
     const double scale = config_.r10_m * config_.r10_m / config_.r10_reflectivity;
     const std::size_t count = std::min(hits.size(), subray_count_);
-    samples.Construct(count);
-    source.Construct(count);
+    double energy[kMaxSubrays];
+    hits.Energies(weights_, config_.retro_gain, scale, count, energy);
     for (std::size_t i = 0; i < count; ++i) {
-        const SubrayHit& h = hits[i];
-        if (!h.valid() || h.distance_m > config_.max_trace_range_m) {
+        const double distance = hits.Distance(i);
+        if (!hits.Valid(i) || distance > config_.max_trace_range_m) {
             continue;
         }
-        if (h.distance_m <= max_range) {
+        if (distance <= max_range) {
             in_range_weight += weights_[i];
         }
-        const double d = std::max(h.distance_m, 1e-3);
-        // A retro-reflector sends its light back to the scanner: retro_gain x a white diffuser.
-        const double rho =
-            h.retro_reflective ? h.reflectivity * config_.retro_gain : h.reflectivity;
-        samples[n] =
-            EchoSample{h.distance_m,
-                       weights_[i] * rho * std::clamp(h.cos_incidence, 0.0, 1.0) * scale / (d * d)};
-        source[n++] = i;
-        r_lo = std::min(r_lo, h.distance_m);
-        r_hi = std::max(r_hi, h.distance_m);
+        samples.EmplaceBack(distance, energy[i]);
+        source.EmplaceBack(i);
+        ++n;
+        r_lo = std::min(r_lo, distance);
+        r_hi = std::max(r_hi, distance);
     }
     const bool compact = config_.return_algorithm == ReturnAlgorithm::kAuto &&
                          r_hi - r_lo <= config_.compact_spread_m;
@@ -749,11 +824,11 @@ PulseResult Lms200Model::FormReturn(const PulseContext& pulse,
                 dominant = k;
             }
         }
-        const SubrayHit& h = hits[source[dominant]];
-        measured += MaterialBiasM(h.surface_id);
-        if (h.reflectivity < config_.dark_bias_reflectivity) {
-            measured +=
-                config_.dark_bias_m * (1.0 - h.reflectivity / config_.dark_bias_reflectivity);
+        const std::size_t k = source[dominant];
+        measured += MaterialBiasM(hits.SurfaceId(k));
+        const double reflectivity = hits.Reflectivity(k);
+        if (reflectivity < config_.dark_bias_reflectivity) {
+            measured += config_.dark_bias_m * (1.0 - reflectivity / config_.dark_bias_reflectivity);
         }
     }
     if (config_.drift_enabled) {

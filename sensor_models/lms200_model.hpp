@@ -79,6 +79,19 @@ struct SubrayHit {
     }
 };
 
+/// A pulse's sub-ray hits as parallel arrays (the simulator's hit batch): element i belongs to
+/// sub-ray i; distance_m[i] = +inf (or NaN) marks a miss, whose other fields are not read.
+/// Equivalent to the SubrayHit list {double(distance_m[i]), double(cos_incidence[i]),
+/// double(reflectivity[i]), surface_id[i], retro_reflective[i] != 0}.
+struct SubrayHitArrays {
+    const float* distance_m = nullptr;
+    const float* cos_incidence = nullptr;
+    const float* reflectivity = nullptr;
+    const std::uint8_t* retro_reflective = nullptr;  // non-zero: a retro-reflector
+    const std::uint32_t* surface_id = nullptr;
+    std::size_t count = 0;
+};
+
 /// One sub-ray echo in the range domain: its range and received energy (units of the
 /// detection threshold T: a full-footprint 10 % target at R10 gives exactly 1).
 struct EchoSample {
@@ -216,11 +229,18 @@ public:
     /// The return of one pulse from its sub-ray hits (hits[i] belongs to PulseSubrays' ray i).
     [[nodiscard]] PulseResult FormReturn(const PulseContext& pulse,
                                          std::span<const SubrayHit> hits) const;
+    /// The same return from the hits as parallel arrays (bit-identical to the span overload
+    /// on the equivalent SubrayHit list; no per-hit struct, vectorised echo energies).
+    [[nodiscard]] PulseResult FormReturn(const PulseContext& pulse,
+                                         const SubrayHitArrays& hits) const;
     /// The per-run bias of a material (m), drawn from the seed and the surface id.
     [[nodiscard]] double MaterialBiasM(std::uint32_t surface_id) const;
 
 private:
-    [[nodiscard]] PulseResult IdealReturn(std::span<const SubrayHit> hits) const;
+    template <class Hits>
+    [[nodiscard]] PulseResult FormReturnImpl(const PulseContext& pulse, const Hits& hits) const;
+    template <class Hits>
+    [[nodiscard]] PulseResult IdealReturn(const Hits& hits) const;
     void Encode(double range_m, PulseRng& rng, core::BeamLabel lost, PulseResult& out) const;
     void SetCode(core::BeamStatus status, core::BeamLabel label, PulseResult& out) const;
     void SetSpike(double range_m, PulseResult& out) const;

@@ -66,19 +66,12 @@ ScanResult CastScanImpl(const World& world,
         pulse.beam = static_cast<std::uint32_t>(i);
         pulse.time_s = out.scan.BeamTime(i);
         pulse.beam_direction_world = axes[i];
-        ScratchArray<sensor_models::SubrayHit, kMaxSubrays> sub_hits;
-        for (std::size_t j = i * m; j < (i + 1) * m; ++j) {
-            const float d = hits.distance_m[j];
-            if (!(d < std::numeric_limits<float>::infinity())) {
-                sub_hits.EmplaceBack();  // a miss
-                continue;
-            }
-            const std::uint32_t id = hits.object_id[j];
-            sub_hits.EmplaceBack(static_cast<double>(d), static_cast<double>(hits.cos_incidence[j]),
-                                 static_cast<double>(hits.reflectivity[j]), id,
-                                 hits.retro_reflective[j] != 0);
-        }
-        const PulseResult r = model.FormReturn(pulse, std::as_const(sub_hits).span());
+        const std::size_t first = i * m;
+        const sensor_models::SubrayHitArrays sub_hits{
+            hits.distance_m.data() + first,   hits.cos_incidence.data() + first,
+            hits.reflectivity.data() + first, hits.retro_reflective.data() + first,
+            hits.object_id.data() + first,    m};
+        const PulseResult r = model.FormReturn(pulse, sub_hits);
         out.scan.beams[i] = r.beam;
         out.truth.labels[i] = r.label;
         out.truth.true_range_m[i] = r.true_range_m;
