@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -513,12 +514,13 @@ void World::CastBatch(const RayBatch& rays, HitBatch& hits) const {
     for (std::size_t first = 0; first < n; first += 16) {
         const std::size_t m = std::min<std::size_t>(16, n - first);
         if (m == 16) {
-            std::copy_n(rays.ox.data() + first, 16, rh.ray.org_x);
-            std::copy_n(rays.oy.data() + first, 16, rh.ray.org_y);
-            std::copy_n(rays.oz.data() + first, 16, rh.ray.org_z);
-            std::copy_n(rays.dx.data() + first, 16, rh.ray.dir_x);
-            std::copy_n(rays.dy.data() + first, 16, rh.ray.dir_y);
-            std::copy_n(rays.dz.data() + first, 16, rh.ray.dir_z);
+            // Fixed-size copies (inlined; std::copy_n here became six memmove calls).
+            std::memcpy(rh.ray.org_x, rays.ox.data() + first, sizeof(rh.ray.org_x));
+            std::memcpy(rh.ray.org_y, rays.oy.data() + first, sizeof(rh.ray.org_y));
+            std::memcpy(rh.ray.org_z, rays.oz.data() + first, sizeof(rh.ray.org_z));
+            std::memcpy(rh.ray.dir_x, rays.dx.data() + first, sizeof(rh.ray.dir_x));
+            std::memcpy(rh.ray.dir_y, rays.dy.data() + first, sizeof(rh.ray.dir_y));
+            std::memcpy(rh.ray.dir_z, rays.dz.data() + first, sizeof(rh.ray.dir_z));
         }
         for (std::size_t k = 0; k < 16; ++k) {
             valid[k] = k < m ? -1 : 0;
