@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "casmap/core/input_error.hpp"
@@ -32,11 +33,7 @@ std::optional<Pose> Trajectory::PoseAt(double stamp_s) const {
     return PoseAt(stamp_s, hint);
 }
 
-std::optional<Pose> Trajectory::PoseAt(double stamp_s, std::size_t& hint) const {
-    if (samples_.empty() || stamp_s < samples_.front().stamp_s ||
-        stamp_s > samples_.back().stamp_s) {
-        return std::nullopt;
-    }
+std::size_t Trajectory::After(double stamp_s, std::size_t& hint) const {
     // The first sample after stamp_s lies in [lo, hi], found by upper_bound over [lo, hi):
     // every sample before lo is at or before stamp_s, and hi is the end or after stamp_s.
     // From a valid hint, gallop forward (1, 2, 4, ... samples).
@@ -62,13 +59,59 @@ std::optional<Pose> Trajectory::PoseAt(double stamp_s, std::size_t& hint) const 
                          samples_.begin() + static_cast<std::ptrdiff_t>(hi), stamp_s,
                          [](double t, const TimedPose& sample) { return t < sample.stamp_s; });
     hint = static_cast<std::size_t>(after - samples_.begin());
-    if (after == samples_.end()) {
+    return hint;
+}
+
+std::optional<Pose> Trajectory::PoseAt(double stamp_s, std::size_t& hint) const {
+    if (samples_.empty() || stamp_s < samples_.front().stamp_s ||
+        stamp_s > samples_.back().stamp_s) {
+        return std::nullopt;
+    }
+    const std::size_t after = After(stamp_s, hint);
+    if (after == samples_.size()) {
         return samples_.back().world_T_sensor;
     }
-    const TimedPose& b = *after;
-    const TimedPose& a = *(after - 1);
+    const TimedPose& b = samples_[after];
+    const TimedPose& a = samples_[after - 1];
     const double t = (stamp_s - a.stamp_s) / (b.stamp_s - a.stamp_s);
     return Interpolate(a.world_T_sensor, b.world_T_sensor, t);
+}
+
+std::optional<Pose> Trajectory::PoseAt(double stamp_s, Cursor& cursor) const {
+    if (samples_.empty() || stamp_s < samples_.front().stamp_s ||
+        stamp_s > samples_.back().stamp_s) {
+        return std::nullopt;
+    }
+    const std::size_t after = After(stamp_s, cursor.hint);
+    if (after == samples_.size()) {
+        return samples_.back().world_T_sensor;
+    }
+    const Pose& a = samples_[after - 1].world_T_sensor;
+    const Pose& b = samples_[after].world_T_sensor;
+    const double t = (stamp_s - samples_[after - 1].stamp_s) /
+                     (samples_[after].stamp_s - samples_[after - 1].stamp_s);
+    // Eigen 3.4's QuaternionBase::slerp step by step, its pair-only part cached.
+    const double d = a.rotation.dot(b.rotation);
+    if (cursor.pair != after) {
+        cursor.pair = after;
+        const double abs_d = std::abs(d);
+        cursor.linear = abs_d >= 1.0 - std::numeric_limits<double>::epsilon();
+        if (!cursor.linear) {
+            cursor.theta = std::acos(abs_d);
+            cursor.sin_theta = std::sin(cursor.theta);
+        }
+    }
+    double scale0 = 1.0 - t;
+    double scale1 = t;
+    if (!cursor.linear) {
+        scale0 = std::sin((1.0 - t) * cursor.theta) / cursor.sin_theta;
+        scale1 = std::sin(t * cursor.theta) / cursor.sin_theta;
+    }
+    if (d < 0.0) {
+        scale1 = -scale1;
+    }
+    return Pose{a.translation + t * (b.translation - a.translation),
+                Eigen::Quaterniond(scale0 * a.rotation.coeffs() + scale1 * b.rotation.coeffs())};
 }
 
 }  // namespace casmap::core

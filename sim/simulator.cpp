@@ -142,9 +142,11 @@ ScanResult CastScan(const World& world,
                              Seconds(stamp_s),
                              "the scan's beams must lie within the trajectory (" + span + ")");
     }
-    std::size_t hint = 0;  // the beams' times are close: each search starts at the last
+    // The beams' times are close: each search starts at the last, and beams between the same
+    // two samples share the slerp's acos and sin.
+    core::Trajectory::Cursor cursor;
     return CastScanImpl(world, model, stamp_s, scan_index,
-                        [&](std::size_t, double t) { return *world_T_sensor.PoseAt(t, hint); });
+                        [&](std::size_t, double t) { return *world_T_sensor.PoseAt(t, cursor); });
 }
 
 ScanResult CastScanAt(const World& world,

@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -106,6 +108,63 @@ TEST(Trajectory, HintedLookupIsBitIdenticalToTheBinarySearch) {
     }
     EXPECT_FALSE(traj.PoseAt(traj.EndTime() + 1e-9, hint).has_value());
     EXPECT_FALSE(traj.PoseAt(-1e-9, hint).has_value());
+}
+
+// Bit patterns of a pose, so -0 and +0 (or two NaNs) are told apart.
+std::vector<std::uint64_t> Bits(const Pose& p) {
+    std::vector<std::uint64_t> bits;
+    for (const double v : {p.translation.x(), p.translation.y(), p.translation.z(), p.rotation.x(),
+                           p.rotation.y(), p.rotation.z(), p.rotation.w()}) {
+        bits.push_back(std::bit_cast<std::uint64_t>(v));
+    }
+    return bits;
+}
+
+TEST(Trajectory, CursorLookupIsBitIdenticalToPoseAt) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    // Orientations: large random turns (the acos branch, and dot < 0 between neighbours), a
+    // 1 kHz table's tiny steps, a constant orientation and a quaternion and its negative
+    // (Eigen's nearly-equal branch, with and without the sign flip).
+    for (int kind = 0; kind < 4; ++kind) {
+        std::vector<TimedPose> samples;
+        for (int i = 0; i < 1000; ++i) {
+            const double t = 1e-3 * i;
+            Eigen::Vector3d rpy(0.1, 0.7, 0.2);
+            if (kind == 0) {
+                rpy = {3.0 * u(rng), 3.0 * u(rng), 6.0 * u(rng)};
+            } else if (kind == 1) {
+                rpy = {0.1 * std::sin(5.0 * t), 0.7 + 0.1 * std::sin(3.0 * t), 0.0};
+            }
+            Pose pose = PoseFromXyzRpy({t, 0.1 * u(rng), 1.0}, rpy);
+            if (kind == 3 && i % 2 == 1) {
+                pose.rotation.coeffs() = -pose.rotation.coeffs();
+            }
+            samples.push_back({t, pose});
+        }
+        const Trajectory traj(samples);
+        Trajectory::Cursor cursor;
+        double stamp = traj.StartTime();
+        for (int k = 0; k < 20000; ++k) {
+            const double r = u(rng);
+            if (r < 0.8) {
+                stamp += 3.7e-5 * u(rng);  // the beams of a scan
+            } else if (r < 0.9) {
+                stamp -= 0.01 * u(rng);  // back (interleaved turns)
+            } else if (r < 0.95) {
+                stamp = samples[static_cast<std::size_t>(u(rng) * 999.0)].stamp_s;  // on a sample
+            } else {
+                cursor = Trajectory::Cursor{};  // a fresh cursor mid-run
+            }
+            stamp = std::clamp(stamp, traj.StartTime(), traj.EndTime());
+            const std::optional<Pose> got = traj.PoseAt(stamp, cursor);
+            ASSERT_TRUE(got.has_value());
+            ASSERT_EQ(Bits(*got), Bits(*traj.PoseAt(stamp)))
+                << "kind " << kind << " stamp " << stamp;
+        }
+        EXPECT_EQ(Bits(*traj.PoseAt(traj.EndTime(), cursor)), Bits(samples.back().world_T_sensor));
+        EXPECT_FALSE(traj.PoseAt(traj.EndTime() + 1e-9, cursor).has_value());
+    }
 }
 
 TEST(Trajectory, RejectsNonIncreasingStamps) {
