@@ -10,6 +10,7 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
 #include "casmap/io/atomic_file.hpp"
+#include "casmap/io/output_set.hpp"
 #include "casmap/io/yaml_emit.hpp"
 #include "casmap/pipeline/bench_maps.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
@@ -346,6 +347,36 @@ std::string WriteBenchOutputs(const fs::path& dir, const BenchResult& result) {
     std::string json = BenchJson(result.runs, elapsed, result.threads);
     io::WriteTextAtomically(dir / "bench.json", json);
     return json;
+}
+
+std::optional<BenchResult> RunBenchToFolder(BenchOptions options,
+                                            const fs::path& out_dir,
+                                            const std::string& json_copy,
+                                            const core::ProgressFn& progress) {
+    options.Validate();  // bad input fails before any work
+    CheckBenchOutputFolder(out_dir);
+    const DistributedSession session;
+    options.session = &session;
+    io::OutputSet outputs;  // rank 0 writes every output
+    fs::path json_tmp;
+    fs::path out_tmp;
+    if (session.rank() == 0) {
+        if (!json_copy.empty()) {
+            json_tmp = outputs.AddFile(json_copy, "json");
+        }
+        out_tmp = outputs.AddFolder(out_dir, "out");
+    }
+    BenchResult result = RunBench(options, session.rank() == 0 ? progress : core::ProgressFn{});
+    result.ranks = session.ranks();
+    if (session.rank() != 0) {
+        return std::nullopt;
+    }
+    const std::string json = WriteBenchOutputs(out_tmp, result);
+    if (!json_copy.empty()) {
+        io::WriteTextAtomically(json_tmp, json);
+    }
+    outputs.Publish();
+    return result;
 }
 
 void CheckBenchOutputFolder(const std::filesystem::path& dir) {

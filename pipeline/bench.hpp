@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,7 @@ struct BenchResult {
     std::vector<std::string> pipelines;     // the pipelines scored
     double elapsed_s = 0.0;                 // wall time of RunBench
     int threads = 1;                        // threads used
+    int ranks = 1;                          // MPI ranks (RunBenchToFolder; RunBench: 1)
 };
 
 /// Validates `options`, then simulates, maps and scores every course x test. `progress` is
@@ -87,6 +89,18 @@ struct BenchResult {
 /// bench.json's elapsed_s counts RunBench and the writing before it. Returns the bench.json text
 /// written.
 std::string WriteBenchOutputs(const std::filesystem::path& dir, const BenchResult& result);
+
+/// The benchmark as `casmap bench` runs it: validates `options`, checks `out_dir`
+/// (CheckBenchOutputFolder) and `json_copy` (an extra bench.json; empty: none) before any work,
+/// runs RunBench in a DistributedSession of its own (MPI under mpirun/srun, else one rank;
+/// options.session is replaced; `progress` on rank 0), and on rank 0 fills a temporary folder
+/// with WriteBenchOutputs and swaps it in for `out_dir` together with the copy (io::OutputSet:
+/// a failed or killed bench leaves the old folder). Output errors name `out` / `json` with the
+/// path as `where`. Returns the result on rank 0, nullopt on other ranks.
+[[nodiscard]] std::optional<BenchResult> RunBenchToFolder(BenchOptions options,
+                                                          const std::filesystem::path& out_dir,
+                                                          const std::string& json_copy,
+                                                          const core::ProgressFn& progress = {});
 
 /// A bench output folder replaces `dir` only if `dir` is missing, empty or a bench output (holds
 /// bench.json): InputError "<dir>: out (holds files but no bench.json: ...)" otherwise.

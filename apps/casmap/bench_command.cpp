@@ -7,19 +7,16 @@
 // poles.md, pi_table.txt, sheets/courseNN_TEST.png (Fig. 7), runs/courseNN_TEST.yaml; with
 // --maps also runs/courseNN_TEST/*.tif + maps.json (pipeline/bench_maps.hpp, for casmap view).
 #include <cstdio>
-#include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "apps/casmap/commands.hpp"
 #include "apps/casmap/flag_names.hpp"
 #include "apps/casmap/progress_bar.hpp"
 #include "casmap/core/text.hpp"
-#include "casmap/io/atomic_file.hpp"
-#include "casmap/io/output_set.hpp"
 #include "casmap/pipeline/bench.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
-#include "casmap/pipeline/distributed.hpp"
 
 namespace casmap::app {
 namespace {
@@ -60,42 +57,25 @@ void RunBench(BenchFlags& flags, const CommonOptions& common, bool courses_given
     opt.sheets = !flags.no_sheets;
     opt.maps = flags.maps;
     opt.threads = common.threads;
-    opt.Validate();  // bad input exits 2 before any work
     // The output folder is one set (runs/, sheets/, images, bench.json): filled under a
-    // temporary name and swapped in at the end, so a failed or killed bench never mixes new
-    // runs with an old bench.json. Only a bench folder (or an empty one) is replaced.
-    WithCommandLineFlags({{"out", "--out"}}, [&] { pipeline::CheckBenchOutputFolder(flags.out); },
-                         {{"out", flags.out}});
-    const pipeline::DistributedSession session;  // MPI under mpirun/srun, else one rank
-    opt.session = &session;
-    io::OutputSet outputs;  // rank 0 writes every output
-    std::filesystem::path json_tmp;
-    std::filesystem::path out_tmp;
-    if (session.rank() == 0) {
-        if (!flags.json.empty()) {
-            json_tmp = outputs.AddFile(flags.json, "--json");
-        }
-        out_tmp = outputs.AddFolder(flags.out, "--out");
-    }
-    pipeline::BenchResult result;
+    // temporary name and swapped in at the end; only a bench folder (or an empty one) is replaced.
+    std::optional<pipeline::BenchResult> result;
     {
         ProgressBar bar("bench");
-        result = pipeline::RunBench(opt, session.rank() == 0 ? bar.Fn() : core::ProgressFn{});
+        WithCommandLineFlags(
+            {{"out", "--out"}, {"json", "--json"}},
+            [&] { result = pipeline::RunBenchToFolder(opt, flags.out, flags.json, bar.Fn()); },
+            {{"out", flags.out}, {"json", flags.json}});
     }
-    if (session.rank() != 0) {
-        return;  // rank 0 writes every output
+    if (!result) {
+        return;  // not rank 0: rank 0 writes every output
     }
-    const std::string json = pipeline::WriteBenchOutputs(out_tmp, result);
-    if (!flags.json.empty()) {
-        io::WriteTextAtomically(json_tmp, json);
-    }
-    outputs.Publish();
-    std::fputs(pipeline::PiTable(result.runs).c_str(), stdout);
+    std::fputs(pipeline::PiTable(result->runs).c_str(), stdout);
     if (!flags.pipelines.empty() || !opt.scenes.empty()) {
-        std::fputs(("\n" + pipeline::PipelinesMarkdown(result.runs)).c_str(), stdout);
+        std::fputs(("\n" + pipeline::PipelinesMarkdown(result->runs)).c_str(), stdout);
     }
-    std::printf("%zu runs in %.1f s on %d threads x %d rank(s) -> %s\n", result.runs.size(),
-                result.elapsed_s, result.threads, session.ranks(), flags.out.c_str());
+    std::printf("%zu runs in %.1f s on %d threads x %d rank(s) -> %s\n", result->runs.size(),
+                result->elapsed_s, result->threads, result->ranks, flags.out.c_str());
 }
 
 }  // namespace

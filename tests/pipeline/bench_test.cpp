@@ -7,6 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -386,6 +388,39 @@ TEST(BenchOptions, PaperPresetEqualsTheDefaults) {
         with.SetAssignment(s);
     }
     EXPECT_EQ(FilterParamsYaml(with), FilterParamsYaml(mapper::FilterParams{}));
+}
+
+TEST(RunBenchToFolder, SwapsInTheOutputsAndTheJsonCopy) {
+    const std::filesystem::path dir =
+        std::filesystem::path(testing::TempDir()) / "casmap_pipeline_bench_folder";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir / "not_a_bench");
+    std::ofstream(dir / "not_a_bench" / "notes.txt") << "mine";
+    BenchOptions options;
+    options.courses = {4};
+    options.tests = {"T"};
+    options.sheets = false;
+    options.threads = 1;
+    const std::optional<BenchResult> r =
+        RunBenchToFolder(options, dir / "out", (dir / "copy.json").string());
+    ASSERT_TRUE(r.has_value());  // one rank without mpirun
+    EXPECT_EQ(r->ranks, 1);
+    ASSERT_EQ(r->runs.size(), 1U);
+    std::ifstream a(dir / "out" / "bench.json");
+    std::ifstream b(dir / "copy.json");
+    const std::string written((std::istreambuf_iterator<char>(a)), {});
+    const std::string copy((std::istreambuf_iterator<char>(b)), {});
+    EXPECT_FALSE(written.empty());
+    EXPECT_EQ(written, copy);
+    // A folder that holds other files is not replaced: InputError before any work.
+    try {
+        (void)RunBenchToFolder(options, dir / "not_a_bench", "");
+        ADD_FAILURE() << "no InputError";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.field(), "out");
+        EXPECT_EQ(e.where(), (dir / "not_a_bench").string());
+    }
+    EXPECT_TRUE(std::filesystem::exists(dir / "not_a_bench" / "notes.txt"));
 }
 
 }  // namespace
