@@ -45,7 +45,8 @@ void CasFilterInto(const core::MapF& elevation,
 /// support = height) left untouched that differ from the median (params.baseline.window) by more
 /// than support_tol_m; objects = candidates with the highest certainty among the candidates of
 /// their (2k+1)^2 window (ties: first in row-major order). Output: the raw height on objects,
-/// the median everywhere else. Classes = the cas_trail classes. Throws InputError as RunFilter.
+/// the median everywhere else; then RestoreTrustedCells (mapper/ground.hpp). Classes = the
+/// cas_trail classes. Throws InputError as RunFilter.
 [[nodiscard]] FilterResult CasMedianFilter(const core::MapF& elevation,
                                            const core::MapF& certainty,
                                            const FilterParams& params);
@@ -56,8 +57,8 @@ void CasFilterInto(const core::MapF& elevation,
 /// their height (surfaces: box edges, corners) or the highest certainty among the candidates of
 /// their window (ties: first in row-major order). Output: h on objects, M elsewhere. Classes =
 /// cas_trail's. With unknown = nan, M is the median of GroundRelativeVotes (mapper/ground.hpp):
-/// removed known cells vote for the local ground, filled cells keep their fill value. Throws
-/// InputError as RunFilter.
+/// removed known cells vote for the local ground, filled cells keep their fill value. Ends with
+/// RestoreTrustedCells (mapper/ground.hpp). Throws InputError as RunFilter.
 [[nodiscard]] FilterResult CasEdgeFilter(const core::MapF& elevation,
                                          const core::MapF& certainty,
                                          const FilterParams& params);
