@@ -1,7 +1,9 @@
 #include "casmap/pipeline/live_setup.hpp"
 
 #include <cstdio>
+#include <optional>
 #include <utility>
+#include <vector>
 
 #include "casmap/core/check.hpp"
 #include "casmap/core/input_error.hpp"
@@ -44,6 +46,15 @@ void LiveOptions::Validate() const {
 #ifndef CASMAP_PIPELINE_WITH_SIM
     check.Fail("scene", scene, "built without the simulator; use device");
 #endif
+}
+
+void ParseWindowSize(std::string_view text, LiveOptions& options, const std::string& field) {
+    const std::vector<std::string> rc = core::SplitList(text);
+    const std::optional<int> rows = rc.size() == 2 ? core::ParseWholeInt(rc[0]) : std::nullopt;
+    const std::optional<int> cols = rc.size() == 2 ? core::ParseWholeInt(rc[1]) : std::nullopt;
+    core::Check().That(rows && cols, field, text, "R,C: two integers (rows, columns)");
+    options.window_rows = *rows;
+    options.window_cols = *cols;
 }
 
 LiveSetup MakeLiveSetup(const LiveOptions& o, int threads) {

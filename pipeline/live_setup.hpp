@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "casmap/drivers/pose_stream.hpp"
@@ -49,6 +50,12 @@ struct LiveOptions {
     /// session's numbers are checked by LiveConfig::Validate() inside MakeLiveSetup.
     void Validate() const;
 };
+
+/// "R,C" (two integers: window rows along travel, columns across) -> options.window_rows,
+/// window_cols; InputError naming `field` otherwise (the sizes are checked by MakeLiveSetup).
+void ParseWindowSize(std::string_view text,
+                     LiveOptions& options,
+                     const std::string& field = "window");
 
 /// What RunLive takes: the configuration, the scans and the poses.
 struct LiveSetup {

@@ -18,9 +18,7 @@
 #include "apps/casmap/commands.hpp"
 #include "apps/casmap/flag_names.hpp"
 #include "apps/casmap/stop_signals.hpp"
-#include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
-#include "casmap/core/text.hpp"
 #include "casmap/pipeline/live_setup.hpp"
 #ifdef CASMAP_WITH_VIEW
 #include "apps/casmap/view_start.hpp"
@@ -49,15 +47,8 @@ void StatusLine(const pipeline::LiveStatus& s) {
 }
 
 void RunLiveCommand(LiveFlags& f, const CommonOptions& common) {
-    const std::vector<std::string> rc = core::SplitList(f.window);
-    const auto rows = rc.size() == 2 ? core::ParseWholeInt(rc[0]) : std::nullopt;
-    const auto cols = rc.size() == 2 ? core::ParseWholeInt(rc[1]) : std::nullopt;
-    if (!rows || !cols) {
-        throw MakeInputError("command line", "--window", f.window,
-                             "R,C: two integers (rows, columns)");
-    }
-    f.options.window_rows = *rows;
-    f.options.window_cols = *cols;
+    WithCommandLineFlags({{"window", "--window"}},
+                         [&] { pipeline::ParseWindowSize(f.window, f.options); });
     static const FlagNames kFlags = {{"device", "--device"},   {"baud", "--baud"},
                                      {"poses", "--poses"},     {"poses_socket", "--poses-socket"},
                                      {"scene", "--scene"},     {"motion", "--motion"},

@@ -19,6 +19,7 @@
 #include "casmap/drivers/virtual_lms200.hpp"
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/run_file.hpp"
+#include "tests/input_error_of.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -142,6 +143,21 @@ TEST(LiveSetup, MapsAVirtualScannerWithAPoseFile) {
     const std::string json = LiveSummaryJson(r);
     EXPECT_NE(json.find("\"scans\": 3, \"scans_mapped\": 3, \"dropped\": 0"), std::string::npos)
         << json;
+}
+
+TEST(LiveSetup, WindowSizeIsTwoIntegers) {
+    LiveOptions o;
+    ParseWindowSize("120,300", o);
+    EXPECT_EQ(o.window_rows, 120);
+    EXPECT_EQ(o.window_cols, 300);
+    ParseWindowSize("80,90,", o);  // a trailing separator ends a list (core::SplitList)
+    EXPECT_EQ(o.window_cols, 90);
+    for (const char* bad : {"120", "120,x", "1.5,2", "1,2,3", ""}) {
+        EXPECT_EQ(test::ErrorOf([&] { ParseWindowSize(bad, o); }),
+                  std::string("window") + (*bad == 0 ? "" : std::string(" = ") + bad) +
+                      " (R,C: two integers (rows, columns))")
+            << bad;
+    }
 }
 
 TEST(LiveSetup, TimeoutMessageSaysWhatWasKept) {
