@@ -12,9 +12,11 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/mesh_import.hpp"
 #include "casmap/io/ply_check.hpp"
+#include "run_file_fixtures.hpp"
 
 namespace casmap::io {
 namespace {
+using test::ReadBytes;
 namespace fs = std::filesystem;
 using testing::HasSubstr;
 
@@ -31,11 +33,6 @@ std::string ErrorOf(const std::string& bytes) {
         return e.what();
     }
     return "";
-}
-
-std::string ReadBytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 TEST(PlyCheck, WellFormedAsciiPasses) {

@@ -14,31 +14,15 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/hdf5_object_header.hpp"
 #include "casmap/io/run_file.hpp"
+#include "run_file_fixtures.hpp"
 
 namespace casmap::io {
 namespace {
+using test::ReadBytes;
+using test::SmallRun;
 namespace fs = std::filesystem;
 
 const fs::path kSource = CASMAP_SOURCE_DIR;
-
-std::string ReadBytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-RunData SmallRun() {
-    RunData run;
-    run.config_yaml = "scene: course04.yaml\n";
-    core::Scan scan;
-    scan.angle_step_rad = 0.0174533;
-    scan.beam_period_s = 3.7e-5;
-    scan.beams.assign(5, core::Beam{1.5F, core::BeamStatus::kOk, 1500});
-    run.scans.push_back(scan);
-    scan.stamp_s = 1.0 / 75;
-    run.scans.push_back(scan);
-    run.format = core::Lms200Format{};
-    return run;
-}
 
 std::string WrittenRun() {
     const fs::path dir = fs::path(testing::TempDir()) / "casmap_run_attribute";

@@ -14,17 +14,15 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/hdf5_global_heap.hpp"
 #include "casmap/io/run_file.hpp"
+#include "run_file_fixtures.hpp"
 
 namespace casmap::io {
 namespace {
+using test::ReadBytes;
+using test::SmallRun;
 namespace fs = std::filesystem;
 
 const fs::path kSource = CASMAP_SOURCE_DIR;
-
-std::string ReadBytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 std::optional<std::string> Check(const std::string& bytes) {
     return h5::FindCorruptGlobalHeap(bytes.size(), [&](std::uint64_t at, std::size_t n, void* out) {
@@ -35,22 +33,6 @@ std::optional<std::string> Check(const std::string& bytes) {
         std::memcpy(out, bytes.data() + at, got);
         return got;
     });
-}
-
-RunData SmallRun() {
-    RunData run;
-    run.config_yaml = "scene: course04.yaml\nmotion: T\n";
-    core::Scan scan;
-    scan.stamp_s = 0.0;
-    scan.start_angle_rad = 0.0;
-    scan.angle_step_rad = 0.0174533;
-    scan.beam_period_s = 3.7e-5;
-    scan.beams.assign(5, core::Beam{1.5F, core::BeamStatus::kOk, 1500});
-    run.scans.push_back(scan);
-    scan.stamp_s = 1.0 / 75;
-    run.scans.push_back(scan);
-    run.format = core::Lms200Format{};
-    return run;
 }
 
 // A little-endian 8-byte length.

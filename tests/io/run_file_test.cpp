@@ -13,9 +13,11 @@
 #include <string>
 
 #include "casmap/core/input_error.hpp"
+#include "run_file_fixtures.hpp"
 
 namespace casmap::io {
 namespace {
+using test::ReadBytes;
 namespace fs = std::filesystem;
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
@@ -26,11 +28,6 @@ fs::path FreshDir(const std::string& name) {
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
-}
-
-std::string ReadBytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 /// Runs /usr/bin/python3 (Debian's, with h5py) on `script`; returns stdout.
