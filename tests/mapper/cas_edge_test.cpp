@@ -20,29 +20,8 @@ namespace {
 using test_maps::Maps;
 using test_maps::Noise;
 using test_maps::NoisyFloor;
-
-// A one-cell pole at (15, 20) seen 80 times, two halo cells holding its top (seen 40 and 30
-// times), and a five-cell trail of one-hit cells falling from the pole's height to the floor.
-Maps PoleWithTrailAndHalo() {
-    Maps p = NoisyFloor();
-    p.h.at(15, 20) = 0.914F;
-    p.c.at(15, 20) = 240.0F;
-    p.h.at(15, 21) = 0.91F;
-    p.c.at(15, 21) = 120.0F;
-    p.h.at(14, 20) = 0.905F;
-    p.c.at(14, 20) = 90.0F;
-    const float trail[] = {0.72F, 0.55F, 0.41F, 0.3F, 0.17F};
-    for (int n = 0; n < 5; ++n) {
-        p.h.at(16 + n, 20) = trail[n];
-        p.c.at(16 + n, 20) = 3.0F;
-    }
-    return p;
-}
-
-bool SameBits(const core::MapF& a, const core::MapF& b) {
-    return a.data.size() == b.data.size() &&
-           std::memcmp(a.data.data(), b.data.data(), 4 * a.data.size()) == 0;
-}
+using test_maps::PoleWithTrailAndHalo;
+using test_maps::SameBits;
 
 TEST(CasEdge, RemovesTrailAndHaloKeepsThePole) {
     const Maps p = PoleWithTrailAndHalo();

@@ -16,25 +16,7 @@ namespace {
 using test_maps::Maps;
 using test_maps::Noise;
 using test_maps::NoisyFloor;
-
-// Well-observed noisy floor; a one-cell pole at (15, 20) seen 24 times; two halo cells beside
-// it holding the pole's top (seen 12 and 9 times); a trail of one-hit cells falling from the
-// pole's height to the floor.
-Maps PoleWithTrailAndHalo() {
-    Maps p = NoisyFloor();
-    p.h.at(15, 20) = 0.914F;
-    p.c.at(15, 20) = 240.0F;
-    p.h.at(15, 21) = 0.91F;
-    p.c.at(15, 21) = 120.0F;
-    p.h.at(14, 20) = 0.905F;
-    p.c.at(14, 20) = 90.0F;
-    const float trail[] = {0.72F, 0.55F, 0.41F, 0.3F, 0.17F};
-    for (int n = 0; n < 5; ++n) {
-        p.h.at(16 + n, 20) = trail[n];
-        p.c.at(16 + n, 20) = 3.0F;
-    }
-    return p;
-}
+using test_maps::PoleWithTrailAndHalo;
 
 TEST(CasMedian, RemovesTrailAndHaloKeepsThePole) {
     const Maps p = PoleWithTrailAndHalo();

@@ -20,6 +20,7 @@ namespace casmap::mapper {
 namespace {
 
 using test_maps::Noise;
+using test_maps::SameBits;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
@@ -90,11 +91,6 @@ const auto kNone = [](int, int) { return false; };
 Terrain Slope(int line_step = 3) {
     return MakeTerrain(
         60, 40, [](int i, int) { return -0.6F + 0.02F * static_cast<float>(i); }, line_step);
-}
-
-bool SameBits(const core::MapF& a, const core::MapF& b) {
-    return a.data.size() == b.data.size() &&
-           std::memcmp(a.data.data(), b.data.data(), 4 * a.data.size()) == 0;
 }
 
 CasParams TrailParams(Unknown unknown, Ground ground) {

@@ -1,9 +1,10 @@
 // Synthetic elevation/certainty maps shared by the CAS-variant tests (cas_median, cas_edge,
-// cas_hybrid, cas_variants): a deterministic +-2 mm floor noise and a 40 x 40 well-observed
-// noisy floor.
+// cas_hybrid, cas_variants, ground): a deterministic +-2 mm floor noise, a 40 x 40 well-observed
+// noisy floor, the pole-with-trail case and a bit-for-bit map comparison.
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 
 #include "casmap/core/grid.hpp"
 
@@ -33,6 +34,31 @@ inline Maps NoisyFloor() {
         }
     }
     return p;
+}
+
+// The noisy floor with a one-cell pole at (15, 20) seen 240 times, two halo cells holding its
+// top (seen 120 and 90 times), and a five-cell trail of one-hit cells falling from the pole's
+// height to the floor.
+inline Maps PoleWithTrailAndHalo() {
+    Maps p = NoisyFloor();
+    p.h.at(15, 20) = 0.914F;
+    p.c.at(15, 20) = 240.0F;
+    p.h.at(15, 21) = 0.91F;
+    p.c.at(15, 21) = 120.0F;
+    p.h.at(14, 20) = 0.905F;
+    p.c.at(14, 20) = 90.0F;
+    const float trail[] = {0.72F, 0.55F, 0.41F, 0.3F, 0.17F};
+    for (int n = 0; n < 5; ++n) {
+        p.h.at(16 + n, 20) = trail[n];
+        p.c.at(16 + n, 20) = 3.0F;
+    }
+    return p;
+}
+
+// True when both maps hold the same floats bit for bit (NaN payloads included).
+inline bool SameBits(const core::MapF& a, const core::MapF& b) {
+    return a.data.size() == b.data.size() &&
+           std::memcmp(a.data.data(), b.data.data(), 4 * a.data.size()) == 0;
 }
 
 }  // namespace casmap::mapper::test_maps
