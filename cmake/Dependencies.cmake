@@ -11,9 +11,10 @@ if(NOT TARGET casmap::hdf5)
     target_include_directories(casmap::hdf5 INTERFACE ${HDF5_INCLUDE_DIRS})
     target_link_libraries(casmap::hdf5 INTERFACE ${HDF5_C_LIBRARIES})
     target_compile_definitions(casmap::hdf5 INTERFACE ${HDF5_DEFINITIONS})
-    # libdeflate (optional, Debian libdeflate-dev): io compresses the chunks of the datasets it
-    # writes itself, about twice as fast as zlib, into the zlib stream HDF5's deflate filter
-    # reads (io/hdf5_util.cpp). Part of this wrapper: only the HDF5 writer uses it.
+    # libdeflate (optional, Debian libdeflate-dev): io compresses the chunks of the noisy datasets
+    # it writes with it (about twice as fast as zlib) into the zlib stream HDF5's deflate filter
+    # reads, and takes Adler-32 from it (io/hdf5_util.cpp, io/deflate_stream.cpp). Part of this
+    # wrapper: only the HDF5 writer uses it.
     find_path(CASMAP_LIBDEFLATE_INCLUDE_DIR libdeflate.h)
     find_library(CASMAP_LIBDEFLATE_LIBRARY deflate)
     if(CASMAP_LIBDEFLATE_INCLUDE_DIR AND CASMAP_LIBDEFLATE_LIBRARY)
@@ -21,7 +22,7 @@ if(NOT TARGET casmap::hdf5)
         target_link_libraries(casmap::hdf5 INTERFACE ${CASMAP_LIBDEFLATE_LIBRARY})
         target_compile_definitions(casmap::hdf5 INTERFACE CASMAP_HAVE_LIBDEFLATE=1)
     else()
-        message(STATUS "casmap: libdeflate not found, HDF5 chunks are compressed by zlib")
+        message(STATUS "casmap: libdeflate not found, HDF5 chunks are compressed by casmap's encoder")
     endif()
 endif()
 

@@ -9,8 +9,10 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
+#include "casmap/io/deflate_stream.hpp"
 #include "casmap/io/hdf5_global_heap.hpp"
 #include "casmap/io/hdf5_object_header.hpp"
 
@@ -42,69 +44,139 @@ std::string ClassName(H5T_class_t c) {
 // the same content gives the same bytes.
 void NoTimes(hid_t plist) { Check(H5Pset_obj_track_times(plist, false), "H5Pset_obj_track_times"); }
 
+// Chunks of whole rows written through the dataset's filter pipeline done here: HDF5's byte
+// shuffle (optional, chosen per dataset) and a zlib stream, stored with H5Dwrite_chunk. Every
+// HDF5 reader decodes them like its own chunks. The partial last chunk is padded with zeros
+// (readers ignore what lies outside the dataset).
+//
+// The encoder is chosen per dataset on its first chunk, deterministically (by sizes, never by
+// time): casmap's DeflateZlib (deflate_stream.hpp) keeps arrays that compress at least
+// kOwnMinRatio (labels, status, smooth poses and true ranges: 3-5x faster than libdeflate
+// there, and smaller); noisy arrays (measured ranges, raw values, moving poses) go to
+// libdeflate level 1 (when built with it), byte-shuffled or not, whichever is smaller.
+class ChunkWriter {
+public:
+    ChunkWriter(const std::vector<hsize_t>& dims,
+                const std::vector<hsize_t>& chunk,
+                std::size_t element,
+                const void* data)
+        : element_(element),
+          rows_(static_cast<std::size_t>(dims[0])),
+          chunk_rows_(static_cast<std::size_t>(chunk[0])),
+          data_(static_cast<const unsigned char*>(data)) {
+        for (std::size_t k = 1; k < dims.size(); ++k) {
+            row_elements_ *= static_cast<std::size_t>(dims[k]);
+        }
+        chunk_elements_ = chunk_rows_ * row_elements_;
+        plain_.resize(chunk_elements_ * element_);
+        shuffled_.resize(chunk_elements_ * element_);
+    }
+
+    // Picks the encoder and the shuffle on the first chunk and keeps that chunk's stream.
+    // Returns whether the dataset's pipeline has the shuffle filter.
+    bool Choose() {
+        shuffle_ = element_ > 1;
+        Encode(0, first_);
 #if defined(CASMAP_HAVE_LIBDEFLATE)
-// Writes a dataset chunked in whole rows (chunk = rows x the other dimensions) chunk by chunk,
-// each passed through what the dataset's filter pipeline does, done here: HDF5's byte shuffle,
-// then a zlib stream (RFC 1950, what HDF5's deflate filter writes and reads) from libdeflate at
-// level 1, about twice as fast as zlib's. Every HDF5 reader decodes it like its own chunks.
-// The partial last chunk is padded with zeros (readers ignore what lies outside the dataset).
-// False when the memory type differs from the file type (then the caller lets HDF5 write).
-bool WriteChunksDeflated(hid_t dataset,
-                         hid_t file_type,
-                         hid_t memory_type,
-                         const std::vector<hsize_t>& dims,
-                         const std::vector<hsize_t>& chunk,
-                         const void* data) {
-    if (H5Tequal(file_type, memory_type) <= 0) {
-        return false;
-    }
-    const std::size_t element = H5Tget_size(file_type);
-    std::size_t row_elements = 1;
-    for (std::size_t k = 1; k < dims.size(); ++k) {
-        row_elements *= static_cast<std::size_t>(dims[k]);
-    }
-    const auto chunk_rows = static_cast<std::size_t>(chunk[0]);
-    const std::size_t chunk_elements = chunk_rows * row_elements;
-    const std::size_t chunk_bytes = chunk_elements * element;
-    const std::unique_ptr<libdeflate_compressor, decltype(&libdeflate_free_compressor)> compressor(
-        libdeflate_alloc_compressor(1), &libdeflate_free_compressor);
-    if (!compressor) {
-        throw std::runtime_error("libdeflate: cannot allocate a compressor");
-    }
-    std::vector<unsigned char> plain(chunk_bytes);
-    std::vector<unsigned char> shuffled(chunk_bytes);
-    std::vector<unsigned char> packed(
-        libdeflate_zlib_compress_bound(compressor.get(), chunk_bytes));
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    const auto rows = static_cast<std::size_t>(dims[0]);
-    std::vector<hsize_t> offset(dims.size(), 0);
-    for (std::size_t row = 0; row < rows; row += chunk_rows) {
-        const std::size_t used = std::min(chunk_rows, rows - row) * row_elements * element;
-        std::memcpy(plain.data(), bytes + row * row_elements * element, used);
-        std::fill(plain.begin() + static_cast<std::ptrdiff_t>(used), plain.end(), 0);
-        const unsigned char* in = plain.data();
-        if (element > 1) {  // H5Z shuffle: byte b of element i goes to b * count + i
-            for (std::size_t b = 0; b < element; ++b) {
-                unsigned char* out = shuffled.data() + b * chunk_elements;
-                const unsigned char* src = plain.data() + b;
-                for (std::size_t i = 0; i < chunk_elements; ++i) {
-                    out[i] = src[i * element];
+        if (first_.size() * kOwnMinRatio > chunk_elements_ * element_) {
+            compressor_.reset(libdeflate_alloc_compressor(1));
+            if (!compressor_) {
+                throw std::runtime_error("libdeflate: cannot allocate a compressor");
+            }
+            Encode(0, first_);
+            if (element_ > 1) {
+                std::vector<unsigned char> plain_stream;
+                shuffle_ = false;
+                Encode(0, plain_stream);
+                shuffle_ = plain_stream.size() >= first_.size();
+                if (!shuffle_) {
+                    first_.swap(plain_stream);
                 }
             }
-            in = shuffled.data();
         }
-        const std::size_t size = libdeflate_zlib_compress(compressor.get(), in, chunk_bytes,
-                                                          packed.data(), packed.size());
-        if (size == 0) {
-            throw std::runtime_error("libdeflate: compression failed");
-        }
-        offset[0] = row;
-        Check(H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, offset.data(), size, packed.data()),
-              "H5Dwrite_chunk");
-    }
-    return true;
-}
 #endif
+        return shuffle_;
+    }
+
+    void Write(hid_t dataset, std::size_t rank) {
+        std::vector<hsize_t> offset(rank, 0);
+        for (std::size_t row = 0; row < rows_; row += chunk_rows_) {
+            if (row > 0) {
+                Encode(row, stream_);
+            } else {
+                stream_.swap(first_);
+            }
+            offset[0] = row;
+            Check(H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, offset.data(), stream_.size(),
+                                 stream_.data()),
+                  "H5Dwrite_chunk");
+        }
+    }
+
+private:
+    static constexpr std::size_t kOwnMinRatio = 4;
+
+    // The zlib stream of the chunk starting at `row`, with the current choices.
+    void Encode(std::size_t row, std::vector<unsigned char>& out) {
+        const std::size_t chunk_bytes = chunk_elements_ * element_;
+        const std::size_t used = std::min(chunk_rows_, rows_ - row) * row_elements_ * element_;
+        const unsigned char* in = data_ + row * row_elements_ * element_;
+        if (used < chunk_bytes) {
+            std::memcpy(plain_.data(), in, used);
+            std::fill(plain_.begin() + static_cast<std::ptrdiff_t>(used), plain_.end(), 0);
+            in = plain_.data();
+        }
+        DeflateLayout layout;
+        if (shuffle_) {  // H5Z shuffle: byte b of element i goes to b * count + i
+            for (std::size_t b = 0; b < element_; ++b) {
+                unsigned char* dst = shuffled_.data() + b * chunk_elements_;
+                const unsigned char* src = in + b;
+                for (std::size_t i = 0; i < chunk_elements_; ++i) {
+                    dst[i] = src[i * element_];
+                }
+            }
+            in = shuffled_.data();
+            // One segment per byte plane; repeats of the previous byte or row in the plane.
+            layout.segment_bytes = chunk_elements_;
+            layout.distance_a = 1;
+            layout.distance_b = row_elements_ > 1 ? row_elements_ : 0;
+        } else {  // repeats of the previous element or row
+            layout.distance_a = element_;
+            layout.distance_b = row_elements_ > 1 ? row_elements_ * element_ : 0;
+        }
+#if defined(CASMAP_HAVE_LIBDEFLATE)
+        if (compressor_) {
+            out.resize(libdeflate_zlib_compress_bound(compressor_.get(), chunk_bytes));
+            const std::size_t size = libdeflate_zlib_compress(compressor_.get(), in, chunk_bytes,
+                                                              out.data(), out.size());
+            if (size == 0) {
+                throw std::runtime_error("libdeflate: compression failed");
+            }
+            out.resize(size);
+            return;
+        }
+#endif
+        DeflateZlib({in, chunk_bytes}, layout, out);
+    }
+
+    std::size_t element_;
+    std::size_t rows_;
+    std::size_t chunk_rows_;
+    std::size_t row_elements_ = 1;
+    std::size_t chunk_elements_ = 0;
+    const unsigned char* data_;
+    bool shuffle_ = false;
+#if defined(CASMAP_HAVE_LIBDEFLATE)
+    struct FreeCompressor {
+        void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
+    };
+    std::unique_ptr<libdeflate_compressor, FreeCompressor> compressor_;
+#endif
+    std::vector<unsigned char> plain_;
+    std::vector<unsigned char> shuffled_;
+    std::vector<unsigned char> first_;
+    std::vector<unsigned char> stream_;
+};
 
 Id ScalarSpace() { return Check(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate"); }
 
@@ -216,25 +288,31 @@ void WriteDataset(hid_t parent,
     // Chunk whole rows, about 256 KiB per chunk; small datasets stay contiguous.
     const std::size_t element = H5Tget_size(file_type);
     std::vector<hsize_t> chunk;  // empty: contiguous
+    std::optional<ChunkWriter> writer;
     if (count >= 1024 && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
         chunk = dims;
         const hsize_t row_bytes = (dims.size() > 1 ? dims[1] : 1) * element;
         chunk[0] = std::clamp<hsize_t>(262144 / std::max<hsize_t>(row_bytes, 1), 1, dims[0]);
         Check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()),
               "H5Pset_chunk " + name);
-        Check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle");
+        bool shuffle = element > 1;
+        if (H5Tequal(file_type, memory_type) > 0) {  // else HDF5 converts and filters
+            writer.emplace(dims, chunk, element, data);
+            shuffle = writer->Choose();
+        }
+        if (shuffle) {
+            Check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle");
+        }
         Check(H5Pset_deflate(dcpl.get(), 1), "H5Pset_deflate");
     }
     const Id dataset = Check(H5Dcreate2(parent, name.c_str(), file_type, space.get(), H5P_DEFAULT,
                                         dcpl.get(), H5P_DEFAULT),
                              H5Dclose, "H5Dcreate2 " + name);
     if (count > 0) {
-#if defined(CASMAP_HAVE_LIBDEFLATE)
-        if (!chunk.empty() &&
-            WriteChunksDeflated(dataset.get(), file_type, memory_type, dims, chunk, data)) {
+        if (writer) {
+            writer->Write(dataset.get(), dims.size());
             return;
         }
-#endif
         Check(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
               "H5Dwrite " + name);
     }
