@@ -183,6 +183,7 @@ FilterResult EdgeFilter(const core::MapF& elevation,
             known(o) && std::abs(elevation.data[o] - h) <= edge_tol ? elevation.data[o] : h;
     }
     RestoreTrustedCells(elevation, certainty, cas, out.elevation);  // mapper/ground.hpp
+    BoundByMeasurement(elevation, certainty, cas, out.elevation);   // unknown = nan only
     return out;
 }
 

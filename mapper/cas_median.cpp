@@ -121,6 +121,7 @@ FilterResult CasMedianFilter(const core::MapF& elevation,
         }
     }
     RestoreTrustedCells(elevation, certainty, cas, out.elevation);  // mapper/ground.hpp
+    BoundByMeasurement(elevation, certainty, cas, out.elevation);   // unknown = nan only
     return out;
 }
 

@@ -12,6 +12,41 @@
 
 namespace casmap::mapper {
 
+namespace {
+
+std::size_t Index(int cols, int i, int j) {
+    return static_cast<std::size_t>(i) * static_cast<std::size_t>(cols) +
+           static_cast<std::size_t>(j);
+}
+
+// A halo: a 3 x 3 neighbour of (i, j) that `filtered` kept at its measured height, seen more
+// often than (i, j), lies within edge_tol of its measured height (a pole's top smeared onto it).
+bool IsHalo(const core::MapF& elevation,
+            const core::MapF& certainty,
+            const core::MapF& filtered,
+            int i,
+            int j,
+            float edge_tol) {
+    const int rows = elevation.rows;
+    const int cols = elevation.cols;
+    const std::size_t n = Index(cols, i, j);
+    const float h = elevation.data[n];
+    const float c = certainty.data[n];
+    for (int r = std::max(0, i - 1); r <= std::min(rows - 1, i + 1); ++r) {
+        for (int s = std::max(0, j - 1); s <= std::min(cols - 1, j + 1); ++s) {
+            const std::size_t o = Index(cols, r, s);
+            const float ho = elevation.data[o];
+            if (o != n && certainty.data[o] > c && !std::isnan(ho) && filtered.data[o] == ho &&
+                std::abs(ho - h) <= edge_tol) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+}  // namespace
+
 core::MapF LocalGroundEstimate(const core::MapF& elevation,
                                const core::MapF& certainty,
                                int k,
@@ -55,10 +90,7 @@ void RestoreTrustedCells(const core::MapF& elevation,
     const auto edge_tol = static_cast<float>(params.edge_tol_m);
     const int rows = elevation.rows;
     const int cols = elevation.cols;
-    const auto index = [cols](int i, int j) {
-        return static_cast<std::size_t>(i) * static_cast<std::size_t>(cols) +
-               static_cast<std::size_t>(j);
-    };
+    const auto index = [cols](int i, int j) { return Index(cols, i, j); };
     // Decided on the filter's output as it came (no cell sees another's restoration).
     std::vector<std::size_t> restore;
     for (int i = 0; i < rows; ++i) {
@@ -70,22 +102,50 @@ void RestoreTrustedCells(const core::MapF& elevation,
             if (!(c > trusted) || std::isnan(h) || std::isnan(y) || !(std::abs(y - h) > tol)) {
                 continue;
             }
-            bool halo = false;
-            for (int r = std::max(0, i - 1); r <= std::min(rows - 1, i + 1) && !halo; ++r) {
-                for (int s = std::max(0, j - 1); s <= std::min(cols - 1, j + 1); ++s) {
-                    const std::size_t o = index(r, s);
-                    const float ho = elevation.data[o];
-                    if (o != n && certainty.data[o] > c && !std::isnan(ho) &&
-                        filtered.data[o] == ho && std::abs(ho - h) <= edge_tol) {
-                        halo = true;
-                        break;
-                    }
-                }
-            }
-            if (!halo) {
+            if (!IsHalo(elevation, certainty, filtered, i, j, edge_tol)) {
                 restore.push_back(n);
             }
         }
+    }
+    for (const std::size_t n : restore) {
+        filtered.data[n] = elevation.data[n];
+    }
+}
+
+void BoundByMeasurement(const core::MapF& elevation,
+                        const core::MapF& certainty,
+                        const CasParams& params,
+                        core::MapF& filtered) {
+    if (params.unknown != Unknown::kNaN) {
+        return;
+    }
+    const auto tol = static_cast<float>(params.support_tol_m);
+    const auto edge_tol = static_cast<float>(params.edge_tol_m);
+    const auto seen = static_cast<float>(params.EffectiveA());
+    const int rows = elevation.rows;
+    const int cols = elevation.cols;
+    // Decided on the filter's output as it came (the halo test sees no other cell's change).
+    std::vector<std::size_t> restore;
+    std::vector<std::size_t> clamp;
+    for (int i = 0; i < rows; ++i) {
+        for (int j = 0; j < cols; ++j) {
+            const std::size_t n = Index(cols, i, j);
+            const float h = elevation.data[n];
+            const float c = certainty.data[n];
+            const float y = filtered.data[n];
+            if (!(c > 0.0F) || std::isnan(h) || std::isnan(y)) {
+                continue;
+            }
+            if (y > h + tol) {
+                clamp.push_back(n);
+            } else if (y < h - tol && c > seen &&
+                       !IsHalo(elevation, certainty, filtered, i, j, edge_tol)) {
+                restore.push_back(n);
+            }
+        }
+    }
+    for (const std::size_t n : clamp) {
+        filtered.data[n] = elevation.data[n] + tol;
     }
     for (const std::size_t n : restore) {
         filtered.data[n] = elevation.data[n];

@@ -46,4 +46,21 @@ void RestoreTrustedCells(const core::MapF& elevation,
                          const CasParams& params,
                          core::MapF& filtered);
 
+/// With unknown = nan (a no-op otherwise: the paper's benchmark mode stays bit-identical), holds
+/// every known cell of `filtered` near its measurement (docs/paper-notes.md "Measurement bounds
+/// on terrain"):
+/// - never more than support_tol_m above it: a mixed pixel lies on its beam between the two
+///   surfaces it straddles, above the farther one, so a measurement is too low only by the
+///   sensor's noise; the median raises a known cell further only where, in a sparsely seen
+///   window, the obstacle's cells outvote the ground (a dilation of the obstacle);
+/// - a cell seen more than A times (c > EffectiveA(): outside Eq. 8's mixed-pixel class) that
+///   `filtered` lowered by more than support_tol_m gets its measured height back, unless it is
+///   the halo of a kept, better-seen neighbour (RestoreTrustedCells' test): on terrain the face
+///   of an obstacle whose top was never observed, which the median sets to the ground.
+/// NaN in `filtered` is left alone. cas_edge, cas_hybrid and cas_median end with it.
+void BoundByMeasurement(const core::MapF& elevation,
+                        const core::MapF& certainty,
+                        const CasParams& params,
+                        core::MapF& filtered);
+
 }  // namespace casmap::mapper
