@@ -41,7 +41,11 @@
 //     in proportion to its evidence. A surface cell seen once (c = a = 3) is as often a box
 //     edge (h right) as a box top smeared one cell onto the floor (B right) on the training
 //     maps; the least-squares answer for such a cell lies between; cells seen many times keep
-//     nearly h.
+//     nearly h;
+//   - with edge_fill > 0, a never-observed cell in the shadow beside a surface takes edge_fill
+//     of the step up to it (mapper/shadow_edge.cpp): the cell a box's edge falls in holds the
+//     box's height in the truth however little of it the box covers, and on the box's far
+//     side no beam may reach it.
 // Candidates, surfaces and peaks are decided against M exactly as in cas_edge; the pole's
 // centroid cell keeps its raw height.
 // Every value comes from the unfiltered map, cas_trail's output or the median; the centroid is
@@ -184,6 +188,15 @@ FilterResult EdgeFilter(const core::MapF& elevation,
     }
     RestoreTrustedCells(elevation, certainty, cas, out.elevation);  // mapper/ground.hpp
     BoundByMeasurement(elevation, certainty, cas, out.elevation);   // unknown = nan only
+    if (hybrid) {
+        const detail::ShadowEdgeParams fill{k,
+                                            edge_tol,
+                                            cas.edge_min,
+                                            tol,
+                                            static_cast<float>(cas.EffectiveA()),
+                                            static_cast<float>(cas.edge_fill)};
+        detail::FillShadowEdges(elevation, certainty, fill, out.elevation);  // cas_surface.hpp
+    }
     return out;
 }
 

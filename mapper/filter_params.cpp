@@ -152,6 +152,8 @@ const std::map<std::string, Setter, std::less<>>& Setters() {
                              auto v) { p.cas.surface_prior = ParseRange(n, v, 0, 1e6, false); }},
         {"median_mix",
          [](FilterParams& p, auto n, auto v) { p.cas.median_mix = ParseRange(n, v, 0, 1, false); }},
+        {"edge_fill",
+         [](FilterParams& p, auto n, auto v) { p.cas.edge_fill = ParseRange(n, v, 0, 1, false); }},
         {"window",
          [](FilterParams& p, auto n, auto v) {
              const int w = ParseInt(n, v, 3, 15);
@@ -355,6 +357,8 @@ void FilterParams::Validate() const {
     check.That(cas.surface_prior >= 0 && cas.surface_prior <= 1e6, "surface_prior",
                cas.surface_prior, "allowed: 0..1e6");
     check.That(cas.median_mix >= 0 && cas.median_mix <= 1, "median_mix", cas.median_mix,
+               "allowed: 0..1");
+    check.That(cas.edge_fill >= 0 && cas.edge_fill <= 1, "edge_fill", cas.edge_fill,
                "allowed: 0..1");
     check.That(baseline.window >= 3 && baseline.window <= 15 && baseline.window % 2 == 1, "window",
                baseline.window, "allowed: odd integer 3..15");

@@ -90,6 +90,9 @@ struct CasParams {
     // cas_edge); B = M + median_mix (median of the raw map - M) on non-object cells (0: M).
     double surface_prior = 0.0;
     double median_mix = 0.0;
+    // cas_hybrid only: a never-observed cell in the shadow beside a surface (box top) takes
+    // edge_fill of the step up to it (0: off; docs/paper-notes.md "cas_hybrid").
+    double edge_fill = 0.0;
 
     /// Eq. 8: A = a * (round(s / (v dt)) + 2), or the given A.
     [[nodiscard]] double EffectiveA() const;
