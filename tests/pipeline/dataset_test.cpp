@@ -1,11 +1,13 @@
 #include "casmap/pipeline/dataset.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/dataset_spec_file.hpp"
@@ -18,10 +20,24 @@ namespace casmap::pipeline {
 namespace {
 namespace fs = std::filesystem;
 
+// Per process (several worktrees' test runs share /tmp on one machine), removed at exit.
+struct TempDirs {
+    std::vector<fs::path> made;
+    ~TempDirs() {
+        for (const fs::path& dir : made) {
+            std::error_code ignored;
+            fs::remove_all(dir, ignored);
+        }
+    }
+};
+
 fs::path TempDir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("casmap_dataset_test_" + name);
+    static TempDirs dirs;
+    const fs::path dir = fs::temp_directory_path() /
+                         ("casmap_dataset_test_" + std::to_string(::getpid()) + "_" + name);
     fs::remove_all(dir);
     fs::create_directories(dir);
+    dirs.made.push_back(dir);
     return dir;
 }
 
