@@ -197,6 +197,8 @@ FilterResult EdgeFilter(const core::MapF& elevation,
                                             static_cast<float>(cas.edge_fill)};
         detail::FillShadowEdges(elevation, certainty, fill, out.elevation);  // cas_surface.hpp
     }
+    // Known cells only (the fill above writes never-observed ones); unknown = nan only.
+    SmoothSurfaceCells(elevation, certainty, median, params, out.elevation);
     return out;
 }
 

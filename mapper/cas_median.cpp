@@ -120,8 +120,9 @@ FilterResult CasMedianFilter(const core::MapF& elevation,
             }
         }
     }
-    RestoreTrustedCells(elevation, certainty, cas, out.elevation);  // mapper/ground.hpp
-    BoundByMeasurement(elevation, certainty, cas, out.elevation);   // unknown = nan only
+    RestoreTrustedCells(elevation, certainty, cas, out.elevation);            // mapper/ground.hpp
+    BoundByMeasurement(elevation, certainty, cas, out.elevation);             // unknown = nan only
+    SmoothSurfaceCells(elevation, certainty, median, params, out.elevation);  // unknown = nan only
     return out;
 }
 

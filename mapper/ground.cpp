@@ -152,4 +152,29 @@ void BoundByMeasurement(const core::MapF& elevation,
     }
 }
 
+void SmoothSurfaceCells(const core::MapF& elevation,
+                        const core::MapF& certainty,
+                        const core::MapF& median,
+                        const FilterParams& params,
+                        core::MapF& filtered) {
+    if (params.cas.unknown != Unknown::kNaN) {
+        return;
+    }
+    const auto near = static_cast<float>(params.cas.surface_tol_m);
+    core::MapF smooth;
+    for (std::size_t n = 0; n < filtered.data.size(); ++n) {
+        const float h = elevation.data[n];
+        if (!(certainty.data[n] > 0.0F) || std::isnan(h) ||
+            !(std::abs(filtered.data[n] - h) <= near) || !(std::abs(median.data[n] - h) <= near)) {
+            continue;
+        }
+        if (smooth.data.empty()) {
+            smooth = WienerFilter(elevation, params.baseline);
+        }
+        if (std::abs(smooth.data[n] - h) <= near) {
+            filtered.data[n] = smooth.data[n];
+        }
+    }
+}
+
 }  // namespace casmap::mapper

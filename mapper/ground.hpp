@@ -63,4 +63,18 @@ void BoundByMeasurement(const core::MapF& elevation,
                         const CasParams& params,
                         core::MapF& filtered);
 
+/// With unknown = nan (a no-op otherwise), after BoundByMeasurement: a known cell whose
+/// measured height lies within surface_tol_m of `median` (the median the variant took: no mixed
+/// pixel, no object there) and of its value in `filtered` takes the Wiener estimate (WienerFilter
+/// of the measured map with params.baseline) when that is within surface_tol_m of the measurement
+/// too: noise-level smoothing only; poles, faces and other cells that stand out from the median
+/// keep their value. On terrain the Wiener filter is the better noise smoother (below the raw
+/// map's RMSE on every training terrain run; docs/paper-notes.md "Measurement bounds on
+/// terrain").
+void SmoothSurfaceCells(const core::MapF& elevation,
+                        const core::MapF& certainty,
+                        const core::MapF& median,
+                        const FilterParams& params,
+                        core::MapF& filtered);
+
 }  // namespace casmap::mapper
