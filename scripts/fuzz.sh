@@ -24,11 +24,12 @@ runs_for() {
         mesh) echo 2500 ;;
         scene_yaml | rig_yaml) echo 25000 ;;
         sensor_yaml) echo 30000 ;;
+        deflate) echo 8000 ;;
         *) echo 60000 ;;
     esac
 }
 all="telegram_parser_fuzz pose_file_fuzz run_file_fuzz tiff_map_fuzz scene_yaml_fuzz \
-sensor_yaml_fuzz rig_yaml_fuzz mesh_fuzz"
+sensor_yaml_fuzz rig_yaml_fuzz mesh_fuzz deflate_fuzz"
 targets=${FUZZ_TARGETS:-$all}
 if ! command -v clang++ >/dev/null 2>&1; then
     echo "fuzz: clang++ not found; skipped"
