@@ -136,7 +136,8 @@ TEST_F(FilterCommand, PresetAppliesThePipelinesSectionOfTheMethod) {
     ASSERT_EQ(Casmap("filter --method cas_hybrid " + maps +
                      " --set A=25 --set h_sum_min=9 --set support_min=5 --set support_tol_m=0.13"
                      " --set edge_min=7 --set edge_tol_m=0.06 --set surface_tol_m=0.015"
-                     " --set surface_min=7 --set surface_prior=2.25 --set median_mix=0.25 --out " +
+                     " --set surface_min=7 --set surface_prior=0.75 --set median_mix=0.125"
+                     " --set edge_fill=0.5 --out " +
                      P("set.tiff"))
                   .code,
               0);
