@@ -117,6 +117,21 @@ TEST(CasHybridFill, KeepsThePoleRemovesTheTrailAndDoesNotGrowThePole) {
     EXPECT_EQ(CellsThatDiffer(out.elevation,
                               RunFilter(FilterMethod::kCasHybrid, p.h, p.c, Params("0")).elevation),
               0);
+    // At the preset's values (config/presets/cas_hybrid.yaml, v3): the same.
+    FilterParams preset = Params("0.5");
+    for (const auto& [name, value] : {std::pair{"h_sum_min", "9"},
+                                      {"support_min", "5"},
+                                      {"support_tol_m", "0.13"},
+                                      {"surface_prior", "0.75"},
+                                      {"median_mix", "0.125"}}) {
+        preset.Set(name, value);
+    }
+    const FilterResult v3 = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, preset);
+    EXPECT_EQ(v3.elevation.at(15, 20), 0.914F);
+    for (int n = 0; n < 5; ++n) {
+        EXPECT_LT(v3.elevation.at(16 + n, 20), 0.05F) << n;
+    }
+    EXPECT_LT(v3.elevation.at(15, 19), 0.05F);
 }
 
 TEST(CasHybridFill, UnknownAsNaNChangesNoObservedCell) {
