@@ -548,6 +548,11 @@ Lms200Model::Lms200Model(const Lms200Config& config, std::uint64_t seed)
         beam_cos_[b] = std::cos(BeamAngleRad(b));
         beam_sin_[b] = std::sin(BeamAngleRad(b));
     }
+    beam_offset_s_.resize(beam_count_);
+    for (std::size_t b = 0; b < beam_count_; ++b) {
+        beam_offset_s_[b] = ComputeBeamTimeOffsetS(b);
+        max_beam_offset_s_ = std::max(max_beam_offset_s_, beam_offset_s_[b]);
+    }
 }
 
 double Lms200Model::StartAngleRad() const { return DegToRad(-0.5 * config_.field_of_view_deg); }
@@ -559,6 +564,10 @@ double Lms200Model::BeamAngleRad(std::size_t beam) const {
 }
 
 double Lms200Model::BeamTimeOffsetS(std::size_t beam) const {
+    return beam < beam_offset_s_.size() ? beam_offset_s_[beam] : ComputeBeamTimeOffsetS(beam);
+}
+
+double Lms200Model::ComputeBeamTimeOffsetS(std::size_t beam) const {
     // Turn k of an interleaved scan measures the angles offset by k x resolution (partial-scan
     // index, sicktoolbox GetSickPartialScan); within a turn the mirror sweeps 360 deg per 1/75 s.
     const double turn = static_cast<double>(beam % static_cast<std::size_t>(turns_));
@@ -579,7 +588,7 @@ core::Scan Lms200Model::MakeScan(double stamp_s) const {
     if (turns_ > 1) {
         scan.beam_time_offset_s.resize(beam_count_);
         for (std::size_t i = 0; i < beam_count_; ++i) {
-            scan.beam_time_offset_s[i] = BeamTimeOffsetS(i);
+            scan.beam_time_offset_s[i] = beam_offset_s_[i];
         }
     }
     scan.beams.resize(beam_count_);

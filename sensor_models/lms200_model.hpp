@@ -165,6 +165,8 @@ public:
     /// Seconds from beam 0 to beam i: turn (i mod turns) of the 75 Hz mirror plus the angular
     /// position within the turn (a 180 deg sweep takes half a turn).
     [[nodiscard]] double BeamTimeOffsetS(std::size_t beam) const;
+    /// The largest BeamTimeOffsetS of the scan (s).
+    [[nodiscard]] double MaxBeamTimeOffsetS() const { return max_beam_offset_s_; }
     /// Mirror turns per scan: 1 (1 deg), 2 (0.5 deg), 4 (0.25 deg).
     [[nodiscard]] int TurnsPerScan() const { return turns_; }
     /// Time for one complete scan (s): turns x 1/75.
@@ -264,6 +266,10 @@ private:
     std::vector<double> bias_table_;  // MaterialBiasM of the first surface ids
     std::vector<double> beam_cos_;
     std::vector<double> beam_sin_;
+    [[nodiscard]] double ComputeBeamTimeOffsetS(std::size_t beam) const;
+
+    std::vector<double> beam_offset_s_;  // BeamTimeOffsetS per beam
+    double max_beam_offset_s_ = 0.0;
 };
 
 }  // namespace casmap::sensor_models

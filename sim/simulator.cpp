@@ -128,10 +128,7 @@ ScanResult CastScan(const World& world,
                     const core::Trajectory& world_T_sensor,
                     double stamp_s,
                     std::uint64_t scan_index) {
-    double last_offset = 0.0;
-    for (std::size_t i = 0; i < model.BeamCount(); ++i) {
-        last_offset = std::max(last_offset, model.BeamTimeOffsetS(i));
-    }
+    const double last_offset = model.MaxBeamTimeOffsetS();
     if (world_T_sensor.empty() || !(stamp_s >= world_T_sensor.StartTime()) ||
         !(stamp_s + last_offset <= world_T_sensor.EndTime())) {
         const std::string span = world_T_sensor.empty()
