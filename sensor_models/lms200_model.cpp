@@ -12,8 +12,9 @@
 
 namespace casmap::sensor_models {
 
-// Widest vectors the CPU has (GCC on x86-64: AVX-512, AVX2 + FMA or SSE2 clones, chosen at
-// load time); the results agree to the 2 ulp of ExpNonPositive.
+// Widest vectors the CPU has (GCC on x86-64: AVX-512, AVX2 or SSE2 clones, chosen at load
+// time). Bit-identical results on every clone: the target is built with -ffp-contract=off, so
+// the v3/v4 clones do not fuse the polynomial into FMAs the SSE2 clone cannot have.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #endif
