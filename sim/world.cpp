@@ -509,8 +509,13 @@ void World::CastBatch(const RayBatch& rays, HitBatch& hits) const {
         rh.hit.Ng_y[k] = 0.0F;
         rh.hit.Ng_z[k] = 0.0F;
     }
-    const float* reflectivity = impl_->reflectivity.data();
-    const std::uint8_t* retro = impl_->retro.data();
+    const float* __restrict reflectivity = impl_->reflectivity.data();
+    const std::uint8_t* __restrict retro = impl_->retro.data();
+    float* __restrict out_distance = hits.distance_m.data();
+    float* __restrict out_cos = hits.cos_incidence.data();
+    float* __restrict out_reflectivity = hits.reflectivity.data();
+    std::uint8_t* __restrict out_retro = hits.retro_reflective.data();
+    std::uint32_t* __restrict out_id = hits.object_id.data();
     for (std::size_t first = 0; first < n; first += 16) {
         const std::size_t m = std::min<std::size_t>(16, n - first);
         if (m == 16) {
@@ -521,10 +526,8 @@ void World::CastBatch(const RayBatch& rays, HitBatch& hits) const {
             std::memcpy(rh.ray.dir_x, rays.dx.data() + first, sizeof(rh.ray.dir_x));
             std::memcpy(rh.ray.dir_y, rays.dy.data() + first, sizeof(rh.ray.dir_y));
             std::memcpy(rh.ray.dir_z, rays.dz.data() + first, sizeof(rh.ray.dir_z));
-        }
-        for (std::size_t k = 0; k < 16; ++k) {
-            valid[k] = k < m ? -1 : 0;
-            if (m < 16) {
+        } else {
+            for (std::size_t k = 0; k < 16; ++k) {
                 const std::size_t j = first + (k < m ? k : 0);
                 rh.ray.org_x[k] = rays.ox[j];
                 rh.ray.org_y[k] = rays.oy[j];
@@ -533,8 +536,18 @@ void World::CastBatch(const RayBatch& rays, HitBatch& hits) const {
                 rh.ray.dir_y[k] = rays.dy[j];
                 rh.ray.dir_z[k] = rays.dz[j];
             }
+        }
+        // One field at a time: plain fills the compiler turns into vector stores.
+        for (std::size_t k = 0; k < 16; ++k) {
+            valid[k] = k < m ? -1 : 0;
+        }
+        for (std::size_t k = 0; k < 16; ++k) {
             rh.ray.tfar[k] = rays.tmax_m;
+        }
+        for (std::size_t k = 0; k < 16; ++k) {
             rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        }
+        for (std::size_t k = 0; k < 16; ++k) {
             rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
         }
         rtcIntersect16(valid, impl_->scene.get(), &context, &rh);
@@ -556,14 +569,14 @@ void World::CastBatch(const RayBatch& rays, HitBatch& hits) const {
             const std::size_t j = first + k;
             const unsigned int id = rh.hit.geomID[k];
             if (id == RTC_INVALID_GEOMETRY_ID) {
-                hits.distance_m[j] = std::numeric_limits<float>::infinity();
+                out_distance[j] = std::numeric_limits<float>::infinity();
                 continue;
             }
-            hits.distance_m[j] = rh.ray.tfar[k];
-            hits.cos_incidence[j] = norm_lane[k] > 0.0F ? cos_lane[k] : 0.0F;
-            hits.reflectivity[j] = reflectivity[id];
-            hits.retro_reflective[j] = retro[id];
-            hits.object_id[j] = id;
+            out_distance[j] = rh.ray.tfar[k];
+            out_cos[j] = norm_lane[k] > 0.0F ? cos_lane[k] : 0.0F;
+            out_reflectivity[j] = reflectivity[id];
+            out_retro[j] = retro[id];
+            out_id[j] = id;
         }
     }
 }
