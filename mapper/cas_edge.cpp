@@ -194,7 +194,8 @@ FilterResult EdgeFilter(const core::MapF& elevation,
                                             cas.edge_min,
                                             tol,
                                             static_cast<float>(cas.EffectiveA()),
-                                            static_cast<float>(cas.edge_fill)};
+                                            static_cast<float>(cas.edge_fill),
+                                            cas.edge_fill_run};
         detail::FillShadowEdges(elevation, certainty, fill, out.elevation);  // cas_surface.hpp
     }
     // Known cells only (the fill above writes never-observed ones); unknown = nan only.

@@ -25,7 +25,7 @@ namespace casmap::mapper::detail {
                                                  std::vector<float>& samples);
 
 /// FillShadowEdges' parameters (from CasParams: k, edge_tol_m, edge_min, support_tol_m,
-/// edge_fill).
+/// EffectiveA(), edge_fill, edge_fill_run).
 struct ShadowEdgeParams {
     int k = 2;                    // window half-width of the surface test
     float edge_tol = 0.06F;       // "same height" of the surface test
@@ -33,13 +33,16 @@ struct ShadowEdgeParams {
     float step_min = 0.13F;       // the neighbour must stand above the cell by more than this
     float max_certainty = 25.0F;  // the neighbour was seen at most this often (A)
     float fill = 0.0F;            // share of the step the cell takes (0: off)
+    int along_min = 0;  // surface cells at the neighbour's height beside it along the edge
 };
 
 /// cas_hybrid's edge_fill (docs/paper-notes.md "cas_hybrid"): every cell that is not known
 /// (c <= 0 or NaN height) whose output is not NaN, with a 4-neighbour that is a surface seen at
 /// most max_certainty times (known, 0 < c <= max_certainty, out within edge_tol of its measured
 /// height, >= edge_min known cells of its (2k+1)^2 window within edge_tol of it) and whose cell
-/// on the opposite side is not known either (or outside the map), takes out + fill (top - out)
+/// on the opposite side is not known either (or outside the map), and with at least along_min
+/// of its two neighbours along the edge (across the step) surfaces within edge_tol of its
+/// output, takes out + fill (top - out)
 /// where top is the highest such neighbour's out and top - out > step_min. Reads known cells and
 /// the cell itself only, writes unknown cells only: the result does not depend on the visiting
 /// order.

@@ -154,6 +154,8 @@ const std::map<std::string, Setter, std::less<>>& Setters() {
          [](FilterParams& p, auto n, auto v) { p.cas.median_mix = ParseRange(n, v, 0, 1, false); }},
         {"edge_fill",
          [](FilterParams& p, auto n, auto v) { p.cas.edge_fill = ParseRange(n, v, 0, 1, false); }},
+        {"edge_fill_run",
+         [](FilterParams& p, auto n, auto v) { p.cas.edge_fill_run = ParseInt(n, v, 0, 2); }},
         {"window",
          [](FilterParams& p, auto n, auto v) {
              const int w = ParseInt(n, v, 3, 15);
@@ -360,6 +362,8 @@ void FilterParams::Validate() const {
                "allowed: 0..1");
     check.That(cas.edge_fill >= 0 && cas.edge_fill <= 1, "edge_fill", cas.edge_fill,
                "allowed: 0..1");
+    check.That(cas.edge_fill_run >= 0 && cas.edge_fill_run <= 2, "edge_fill_run", cas.edge_fill_run,
+               "allowed: integer 0..2");
     check.That(baseline.window >= 3 && baseline.window <= 15 && baseline.window % 2 == 1, "window",
                baseline.window, "allowed: odd integer 3..15");
     check.That(!baseline.noise || (*baseline.noise >= 0 && std::isfinite(*baseline.noise)), "noise",

@@ -93,6 +93,9 @@ struct CasParams {
     // cas_hybrid only: a never-observed cell in the shadow beside a surface (box top) takes
     // edge_fill of the step up to it (0: off; docs/paper-notes.md "cas_hybrid").
     double edge_fill = 0.0;
+    // ... and only beside a surface cell with at least edge_fill_run of its two neighbours
+    // along the edge at its height (0: any; 1: the edge continues on one side at least).
+    int edge_fill_run = 0;
 
     /// Eq. 8: A = a * (round(s / (v dt)) + 2), or the given A.
     [[nodiscard]] double EffectiveA() const;

@@ -88,6 +88,20 @@ void FillShadowEdges(const core::MapF& elevation,
                     continue;
                 }
                 const float h = out.data[index(ni, nj)];
+                // The edge continues along the box: the neighbour's own neighbours across the
+                // step (on the edge's line) that are surfaces at its height.
+                int along = 0;
+                for (const int side : {1, -1}) {
+                    const int li = ni + side * step[1];
+                    const int lj = nj + side * step[0];
+                    along += inside(li, lj) && known(index(li, lj)) && is_surface(li, lj) &&
+                                     std::abs(out.data[index(li, lj)] - h) <= params.edge_tol
+                                 ? 1
+                                 : 0;
+                }
+                if (along < params.along_min) {
+                    continue;
+                }
                 if (!found || h > top) {
                     top = h;
                     found = true;

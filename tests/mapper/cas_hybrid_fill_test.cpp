@@ -1,6 +1,7 @@
 // cas_hybrid's edge_fill (docs/paper-notes.md "cas_hybrid", occluded box edges) on closed-form
 // synthetic maps: a box whose far side lies in a four-cell shadow (the first shadow column takes
-// edge_fill of the step, bit for bit; nothing else changes), the same box seen more than A
+// edge_fill of the step, bit for bit; nothing else changes), edge_fill_run (a one-cell spur of
+// the box is not filled beside, the straight edge is), the same box seen more than A
 // times (no fill), a one-cell gap with the floor seen beyond it (no fill), a pole with its
 // trail and an unknown cell beside it (pole kept, trail gone, the pole's shadow not filled),
 // unknown = NaN (no observed cell changes), validation naming the field.
@@ -79,6 +80,36 @@ TEST(CasHybridFill, TheFirstShadowColumnTakesItsShareOfTheStep) {
     EXPECT_TRUE(SameBits(full.at(20, 20), off.at(20, 19)));
 }
 
+TEST(CasHybridFill, EdgeFillRunNeedsTheEdgeToContinue) {
+    // A one-cell spur of the box into its shadow at (20, 20): a surface (its window holds the
+    // box) whose neighbours along the edge, (19, 20) and (21, 20), are unknown. edge_fill_run 0
+    // fills (20, 21) beside it; 1 does not (a smeared protrusion, not the box's edge line), and
+    // still fills the straight edge; 2 also leaves the two corner rows (one neighbour along).
+    Maps p = ShadowedBox(6.0F);
+    p.c.at(20, 20) = 6.0F;
+    p.h.at(20, 20) = 0.3F + Noise(20, 20);
+    FilterParams any = Params("0.5");
+    FilterParams one = Params("0.5");
+    FilterParams two = Params("0.5");
+    one.Set("edge_fill_run", "1");
+    two.Set("edge_fill_run", "2");
+    const core::MapF off = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, Params("0")).elevation;
+    const core::MapF a = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, any).elevation;
+    const core::MapF b = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, one).elevation;
+    const core::MapF c = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, two).elevation;
+    EXPECT_GT(a.at(20, 21), off.at(20, 21) + 0.1F);
+    EXPECT_TRUE(SameBits(b.at(20, 21), off.at(20, 21)));
+    for (int i = 10; i < 30; ++i) {
+        if (i == 20) {
+            continue;
+        }
+        EXPECT_TRUE(SameBits(b.at(i, 20), a.at(i, 20))) << i;  // the straight edge: filled
+        EXPECT_GT(b.at(i, 20), off.at(i, 20) + 0.1F) << i;
+        const bool corner = i == 10 || i == 29;
+        EXPECT_EQ(SameBits(c.at(i, 20), off.at(i, 20)), corner) << i;
+    }
+}
+
 TEST(CasHybridFill, NoFillBesideAWellSeenSurfaceOrAGapWithTheFloorBeyond) {
     // The same box seen 60 times (> A = 25): a sliver of the box in the unknown cell would
     // have been hit; the fill leaves the map as it is.
@@ -117,21 +148,24 @@ TEST(CasHybridFill, KeepsThePoleRemovesTheTrailAndDoesNotGrowThePole) {
     EXPECT_EQ(CellsThatDiffer(out.elevation,
                               RunFilter(FilterMethod::kCasHybrid, p.h, p.c, Params("0")).elevation),
               0);
-    // At the preset's values (config/presets/cas_hybrid.yaml, v3): the same.
+    // At the preset's values (config/presets/cas_hybrid.yaml, v4): the same.
     FilterParams preset = Params("0.5");
     for (const auto& [name, value] : {std::pair{"h_sum_min", "9"},
                                       {"support_min", "5"},
                                       {"support_tol_m", "0.13"},
+                                      {"edge_min", "9"},
+                                      {"edge_tol_m", "0.1"},
                                       {"surface_prior", "0.75"},
-                                      {"median_mix", "0.125"}}) {
+                                      {"median_mix", "0.1875"},
+                                      {"edge_fill_run", "1"}}) {
         preset.Set(name, value);
     }
-    const FilterResult v3 = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, preset);
-    EXPECT_EQ(v3.elevation.at(15, 20), 0.914F);
+    const FilterResult v4 = RunFilter(FilterMethod::kCasHybrid, p.h, p.c, preset);
+    EXPECT_EQ(v4.elevation.at(15, 20), 0.914F);
     for (int n = 0; n < 5; ++n) {
-        EXPECT_LT(v3.elevation.at(16 + n, 20), 0.05F) << n;
+        EXPECT_LT(v4.elevation.at(16 + n, 20), 0.05F) << n;
     }
-    EXPECT_LT(v3.elevation.at(15, 19), 0.05F);
+    EXPECT_LT(v4.elevation.at(15, 19), 0.05F);
 }
 
 TEST(CasHybridFill, UnknownAsNaNChangesNoObservedCell) {
@@ -167,6 +201,22 @@ TEST(CasHybridFill, RejectsBadValuesNamingTheField) {
         } catch (const InputError& e) {
             EXPECT_NE(std::string(e.what()).find("edge_fill"), std::string::npos) << e.what();
         }
+    }
+    for (const char* value : {"-1", "3", "1.5", "x"}) {
+        try {
+            params.Set("edge_fill_run", value);
+            ADD_FAILURE() << "edge_fill_run=" << value << " accepted";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("edge_fill_run"), std::string::npos) << e.what();
+        }
+    }
+    FilterParams run;
+    run.cas.edge_fill_run = 3;
+    try {
+        (void)RunFilter(FilterMethod::kCasHybrid, NoisyFloor().h, NoisyFloor().c, run);
+        ADD_FAILURE() << "edge_fill_run 3 accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("edge_fill_run"), std::string::npos) << e.what();
     }
     FilterParams bad;
     bad.cas.edge_fill = 2.0;  // set directly: Validate (run by every filter) names it

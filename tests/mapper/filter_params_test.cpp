@@ -61,7 +61,7 @@ TEST(FilterParams, SetsEveryNamedParameter) {
     EXPECT_EQ(p.cas.edge_min, 9);
     EXPECT_EQ(p.cas.edge_tol_m, 0.04);
     EXPECT_NO_THROW(p.Validate());
-    EXPECT_EQ(FilterParams::Names().size(), 45U);  // 31 filter + 14 mapping-stage names
+    EXPECT_EQ(FilterParams::Names().size(), 46U);  // 32 filter + 14 mapping-stage names
 }
 
 TEST(FilterParams, SetsTheWaveTwoOptions) {
