@@ -85,8 +85,9 @@ void Shuffle(const unsigned char* in, std::size_t element, std::size_t count, un
 // The encoder is chosen per dataset on its first chunk, deterministically (by sizes, never by
 // time): casmap's DeflateZlib (deflate_stream.hpp) keeps arrays that compress at least
 // kOwnMinRatio (labels, status, smooth poses and true ranges: 3-5x faster than libdeflate
-// there, and smaller); noisy arrays (measured ranges, raw values, moving poses) go to
-// libdeflate level 1 (when built with it), byte-shuffled or not, whichever is smaller.
+// there, and smaller) or come within 2 % of libdeflate's size; other noisy arrays (measured
+// ranges, moving orientations) go to libdeflate level 1 (when built with it), byte-shuffled
+// or not, whichever is smaller.
 class ChunkWriter {
 public:
     ChunkWriter(const std::vector<hsize_t>& dims,
@@ -116,6 +117,9 @@ public:
             if (!compressor_) {
                 throw std::runtime_error("libdeflate: cannot allocate a compressor");
             }
+            std::vector<unsigned char> own;
+            own.swap(first_);
+            const bool own_shuffle = shuffle_;
             Encode(0, first_);
             if (element_ > 1) {
                 std::vector<unsigned char> plain_stream;
@@ -125,6 +129,13 @@ public:
                 if (!shuffle_) {
                     first_.swap(plain_stream);
                 }
+            }
+            // Within 2 % of libdeflate's size (raw values, a table run's positions) casmap's
+            // encoder is still the faster one.
+            if (own.size() * 100 <= first_.size() * kOwnMaxExcessPercent) {
+                compressor_.reset();
+                shuffle_ = own_shuffle;
+                first_.swap(own);
             }
         }
 #endif
@@ -148,6 +159,7 @@ public:
 
 private:
     static constexpr std::size_t kOwnMinRatio = 4;
+    static constexpr std::size_t kOwnMaxExcessPercent = 102;
 
     // The zlib stream of the chunk starting at `row`, with the current choices.
     void Encode(std::size_t row, std::vector<unsigned char>& out) {
