@@ -34,8 +34,10 @@ public:
         double theta = 0.0;
         double sin_theta = 0.0;
     };
-    /// The same pose again (bit for bit), from `cursor` (start with Cursor{}): look-ups between
-    /// the same two samples, e.g. a scan's beams, take the slerp's acos and sin once.
+    /// The same pose from `cursor` (start with Cursor{}): look-ups between the same two
+    /// samples, e.g. a scan's beams, take the slerp's acos and sin once. The translation is
+    /// bit-identical to PoseAt(stamp_s); the rotation within a few ulp (small-angle sines by
+    /// polynomial), the same for any sequence of look-ups.
     [[nodiscard]] std::optional<Pose> PoseAt(double stamp_s, Cursor& cursor) const;
     [[nodiscard]] bool empty() const { return samples_.empty(); }
     [[nodiscard]] std::size_t size() const { return samples_.size(); }

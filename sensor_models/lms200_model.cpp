@@ -385,7 +385,7 @@ double PulseRng::Normal() {
     // Ziggurat of 256 layers of equal area (Marsaglia & Tsang 2000; tables exact to double,
     // solved by scripts/gen_ziggurat_tables.py). One 64-bit draw: bits 0-7 pick the layer,
     // bit 8 the sign, bits 11-63 the position x = j w_i in it; x < x_{i+1} lies under the
-    // curve (an integer compare, 98.8 % of the draws). Otherwise the base layer samples the
+    // curve (an integer compare, 98.5 % of the draws). Otherwise the base layer samples the
     // tail beyond r (Marsaglia 1964) and the others test the wedge against exp(-x^2 / 2).
     for (;;) {
         const std::uint64_t bits = NextU64();

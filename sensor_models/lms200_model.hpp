@@ -45,7 +45,7 @@ public:
     }
     /// Uniform in [0, 1).
     [[nodiscard]] double Uniform() { return static_cast<double>(NextU64() >> 11) * 0x1.0p-53; }
-    /// Standard normal (a 256-layer ziggurat: one 64-bit draw for 98.8 % of the values).
+    /// Standard normal (a 256-layer ziggurat: one 64-bit draw for 98.5 % of the values).
     [[nodiscard]] double Normal();
 
 private:
