@@ -192,5 +192,20 @@ TEST(DeflateStream, RandomStructuredInputsRoundTrip) {
     }
 }
 
+TEST(DeflateStream, SegmentsLongerThanAStoredBlockRoundTrip) {
+    // The writer's byte planes: a 256 KiB chunk of 4-byte elements is four 65536-byte segments,
+    // one byte more than a stored block holds, so an incompressible plane is stored as two
+    // blocks (only the last of the last segment final); 2-byte and larger planes likewise.
+    std::mt19937_64 gen(29);
+    for (const std::size_t segment : {65536UL, 131072UL, 200000UL}) {
+        SCOPED_TRACE("segment " + std::to_string(segment));
+        Bytes mixed = RandomBytes(4 * segment, gen);
+        std::fill(mixed.begin() + static_cast<std::ptrdiff_t>(segment),
+                  mixed.begin() + static_cast<std::ptrdiff_t>(2 * segment), 0);  // compressible
+        RoundTrip(mixed, {.segment_bytes = segment, .distance_a = 1, .distance_b = 181});
+        RoundTrip(RandomBytes(segment + 1, gen), {.segment_bytes = segment});
+    }
+}
+
 }  // namespace
 }  // namespace casmap::io::h5
