@@ -148,8 +148,10 @@ public:
     }
     // Raw bytes after Align().
     void Bytes(const unsigned char* data, std::size_t size) {
-        std::memcpy(out_, data, size);
-        out_ += size;
+        if (size > 0) {  // an empty input's data() may be null: no memcpy from it
+            std::memcpy(out_, data, size);
+            out_ += size;
+        }
     }
     [[nodiscard]] unsigned char* position() const { return out_; }
 
