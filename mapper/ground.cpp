@@ -6,13 +6,27 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
+#include "casmap/core/input_error.hpp"
 #include "casmap/mapper/cas_variants.hpp"
 
 namespace casmap::mapper {
 
 namespace {
+
+std::string Size(int rows, int cols) { return std::to_string(rows) + "x" + std::to_string(cols); }
+
+// Every map these functions take has the elevation map's size (as CasFilter checks).
+template <class Map>
+void CheckSize(const core::MapF& elevation, const Map& map, const std::string& field) {
+    if (map.rows != elevation.rows || map.cols != elevation.cols) {
+        throw MakeInputError(
+            "ground", field, Size(map.rows, map.cols),
+            "must have the elevation map's size " + Size(elevation.rows, elevation.cols));
+    }
+}
 
 std::size_t Index(int cols, int i, int j) {
     return static_cast<std::size_t>(i) * static_cast<std::size_t>(cols) +
@@ -51,6 +65,13 @@ core::MapF LocalGroundEstimate(const core::MapF& elevation,
                                const core::MapF& certainty,
                                int k,
                                double quantile) {
+    CheckSize(elevation, certainty, "certainty");
+    if (k < 0) {
+        throw MakeInputError("ground", "k", std::to_string(k), "allowed: >= 0");
+    }
+    if (!(quantile >= 0.0 && quantile <= 1.0)) {
+        throw MakeInputError("ground", "quantile", std::to_string(quantile), "allowed: 0..1");
+    }
     return detail::LocalGround(elevation, certainty, k, quantile);
 }
 
@@ -58,10 +79,13 @@ core::MapF GroundRelativeVotes(const core::MapF& elevation,
                                const core::MapF& certainty,
                                const CasParams& params,
                                const FilterResult& cleaned) {
+    CheckSize(elevation, certainty, "certainty");
+    CheckSize(elevation, cleaned.elevation, "cleaned.elevation");
     core::MapF votes = cleaned.elevation;
     if (params.unknown != Unknown::kNaN || params.ground != Ground::kZero) {
         return votes;
     }
+    CheckSize(elevation, cleaned.classes, "cleaned.classes");
     const auto removed = static_cast<std::uint8_t>(PixelClass::kRemoved);
     const auto filled = static_cast<std::uint8_t>(PixelClass::kFilled);
     const std::size_t cells = votes.data.size();
@@ -85,6 +109,8 @@ void RestoreTrustedCells(const core::MapF& elevation,
                          const core::MapF& certainty,
                          const CasParams& params,
                          core::MapF& filtered) {
+    CheckSize(elevation, certainty, "certainty");
+    CheckSize(elevation, filtered, "filtered");
     const auto trusted = static_cast<float>(params.EffectiveG());
     const auto tol = static_cast<float>(params.support_tol_m);
     const auto edge_tol = static_cast<float>(params.edge_tol_m);
@@ -116,6 +142,8 @@ void BoundByMeasurement(const core::MapF& elevation,
                         const core::MapF& certainty,
                         const CasParams& params,
                         core::MapF& filtered) {
+    CheckSize(elevation, certainty, "certainty");
+    CheckSize(elevation, filtered, "filtered");
     if (params.unknown != Unknown::kNaN) {
         return;
     }
@@ -157,6 +185,9 @@ void SmoothSurfaceCells(const core::MapF& elevation,
                         const core::MapF& median,
                         const FilterParams& params,
                         core::MapF& filtered) {
+    CheckSize(elevation, certainty, "certainty");
+    CheckSize(elevation, median, "median");
+    CheckSize(elevation, filtered, "filtered");
     if (params.cas.unknown != Unknown::kNaN) {
         return;
     }

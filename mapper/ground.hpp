@@ -15,6 +15,8 @@ namespace casmap::mapper {
 /// heights (c > 0, not NaN) of the (2k+1)^2 window clipped to the map; 0 where the window has
 /// none. cas_terrain uses it with k = ground_k (9 x 9), GroundRelativeVotes with the CAS window
 /// (k, 5 x 5: on training terrain a 9 x 9 window rounded steps and slope ends in sparse scans).
+/// Throws InputError for k < 0 or a quantile outside 0..1. Every function of this header throws
+/// InputError naming the map whose size differs from `elevation`'s.
 [[nodiscard]] core::MapF LocalGroundEstimate(const core::MapF& elevation,
                                              const core::MapF& certainty,
                                              int k,
