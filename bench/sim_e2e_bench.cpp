@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "casmap/core/scene.hpp"
@@ -166,13 +167,14 @@ void BM_SimulateEndToEnd(benchmark::State& state) {
         const Scene scene = LoadVariant(variant);
         const casmap::sim::World world(scene);
         const double t1 = CpuSeconds();
-        const casmap::core::Trajectory poses = casmap::pipeline::RigTrajectory(setup_cfg, scene);
+        casmap::core::Trajectory rig_poses = casmap::pipeline::RigTrajectory(setup_cfg, scene);
         const double t2 = CpuSeconds();
         casmap::pipeline::SimulateRunOptions options;
         options.threads = 1;
         options.truth = false;
         casmap::pipeline::SimulatedRun run =
-            casmap::pipeline::SimulateRun(setup_cfg, scene, world, poses, options);
+            casmap::pipeline::SimulateRun(setup_cfg, scene, world, std::move(rig_poses), options);
+        const casmap::core::Trajectory& poses = run.true_poses;
         const double t3 = CpuSeconds();
         run.run.maps.truth_m = casmap::sim::GroundTruthElevation(scene, setup_cfg.grid, 1);
         const double t4 = CpuSeconds();

@@ -234,11 +234,10 @@ Json Simulate(const scenegen::DatasetSpec& spec,
     io::WriteTextAtomically(dir / "sensor.yaml", io::Lms200ConfigToYaml(setup.lms));
     files.insert(files.end(), {"rig.yaml", "sensor.yaml"});
     const sim::World world(scene);
-    const core::Trajectory poses = RigTrajectory(setup, scene);
     SimulateRunOptions sim_options;
     sim_options.threads = 1;
     sim_options.truth = false;
-    SimulatedRun sim = SimulateRun(setup, scene, world, poses, sim_options);
+    SimulatedRun sim = SimulateRun(setup, scene, world, RigTrajectory(setup, scene), sim_options);
     io::RunData& run = sim.run;
     sim::GroundTruthOptions truth_options;
     truth_options.clamp_to_datum = false;  // holes and ditches keep their negative heights

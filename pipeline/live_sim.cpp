@@ -62,11 +62,10 @@ private:
 io::RunData SimulateWithoutTruth(const SimSetup& setup, int threads) {
     const core::Scene scene = io::LoadScene(setup.scene_path);
     const sim::World world(scene);
-    const core::Trajectory true_poses = RigTrajectory(setup, scene);
     SimulateRunOptions options;
     options.threads = threads;
     options.truth = false;
-    return SimulateRun(setup, scene, world, true_poses, options).run;
+    return SimulateRun(setup, scene, world, RigTrajectory(setup, scene), options).run;
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <utility>
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/parallel.hpp"
@@ -208,7 +209,7 @@ std::size_t ScanCount(const SimSetup& setup, const core::Trajectory& trajectory)
 SimulatedRun SimulateRun(const SimSetup& setup,
                          const core::Scene& scene,
                          const sim::World& world,
-                         const core::Trajectory& true_poses,
+                         core::Trajectory true_poses,
                          const SimulateRunOptions& options) {
     const sensor_models::Lms200Model model(setup.lms, setup.seed);
     sim::SimulateOptions sim_options;
@@ -219,7 +220,6 @@ SimulatedRun SimulateRun(const SimSetup& setup,
     sim_options.progress = options.progress;
     std::vector<sim::ScanResult> results = sim::Simulate(world, model, true_poses, sim_options);
     SimulatedRun out;
-    out.true_poses = true_poses;
     io::RunData& run = out.run;
     run.scans.reserve(results.size());
     run.truth.reserve(results.size());
@@ -229,6 +229,7 @@ SimulatedRun SimulateRun(const SimSetup& setup,
     }
     run.poses =
         setup.pose_error.enabled ? rig::ApplyPoseError(true_poses, setup.pose_error) : true_poses;
+    out.true_poses = std::move(true_poses);
     run.format = setup.lms.format;
     run.seed = setup.seed;
     run.config_yaml = EffectiveConfigYaml(setup);

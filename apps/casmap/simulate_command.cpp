@@ -45,15 +45,16 @@ void RunSimulate(SimulateOptions& opt, const CommonOptions& common, bool speed_g
     WithFlagNames(kFlags, [&] { setup = pipeline::ResolveSimSetup(opt.flags); });
     const core::Scene scene = io::LoadScene(setup.scene_path);
     const sim::World world(scene);
-    const core::Trajectory poses = pipeline::RigTrajectory(setup, scene);
     pipeline::SimulatedRun result;
     {
         ProgressBar bar("simulate");
         pipeline::SimulateRunOptions options;
         options.threads = common.threads;
         options.progress = bar.Fn();
-        result = pipeline::SimulateRun(setup, scene, world, poses, options);
+        result = pipeline::SimulateRun(setup, scene, world, pipeline::RigTrajectory(setup, scene),
+                                       options);
     }
+    const core::Trajectory& poses = result.true_poses;
     io::WriteTextAtomically(config_tmp, result.run.config_yaml);
     io::WriteRunFile(run_tmp, result.run);
     outputs.Publish();
