@@ -93,11 +93,13 @@ public:
     ChunkWriter(const std::vector<hsize_t>& dims,
                 const std::vector<hsize_t>& chunk,
                 std::size_t element,
-                const void* data)
+                const void* data,
+                const RowFill* fill)
         : element_(element),
           rows_(static_cast<std::size_t>(dims[0])),
           chunk_rows_(static_cast<std::size_t>(chunk[0])),
-          data_(static_cast<const unsigned char*>(data)) {
+          data_(static_cast<const unsigned char*>(data)),
+          fill_(fill) {
         for (std::size_t k = 1; k < dims.size(); ++k) {
             row_elements_ *= static_cast<std::size_t>(dims[k]);
         }
@@ -165,11 +167,18 @@ private:
     void Encode(std::size_t row, std::vector<unsigned char>& out) {
         const std::size_t chunk_bytes = chunk_elements_ * element_;
         const std::size_t used = std::min(chunk_rows_, rows_ - row) * row_elements_ * element_;
-        const unsigned char* in = data_ + row * row_elements_ * element_;
-        if (used < chunk_bytes) {
-            std::memcpy(plain_.data(), in, used);
+        const unsigned char* in = nullptr;
+        if (fill_ != nullptr) {  // the rows straight into the chunk buffer
+            (*fill_)(row, std::min(chunk_rows_, rows_ - row), plain_.data());
             std::fill(plain_.begin() + static_cast<std::ptrdiff_t>(used), plain_.end(), 0);
             in = plain_.data();
+        } else {
+            in = data_ + row * row_elements_ * element_;
+            if (used < chunk_bytes) {
+                std::memcpy(plain_.data(), in, used);
+                std::fill(plain_.begin() + static_cast<std::ptrdiff_t>(used), plain_.end(), 0);
+                in = plain_.data();
+            }
         }
         DeflateLayout layout;
         if (shuffle_) {
@@ -204,6 +213,7 @@ private:
     std::size_t row_elements_ = 1;
     std::size_t chunk_elements_ = 0;
     const unsigned char* data_;
+    const RowFill* fill_;
     bool shuffle_ = false;
 #if defined(CASMAP_HAVE_LIBDEFLATE)
     struct FreeCompressor {
@@ -310,12 +320,15 @@ Id CreateGroup(hid_t parent, const std::string& name) {
                  "H5Gcreate2 " + name);
 }
 
-void WriteDataset(hid_t parent,
-                  const std::string& name,
-                  hid_t file_type,
-                  hid_t memory_type,
-                  const std::vector<hsize_t>& dims,
-                  const void* data) {
+namespace {
+// `data` (whole array) or, when null, `fill` (chunk by chunk).
+void WriteDatasetFrom(hid_t parent,
+                      const std::string& name,
+                      hid_t file_type,
+                      hid_t memory_type,
+                      const std::vector<hsize_t>& dims,
+                      const void* data,
+                      const RowFill* fill) {
     const Id space = Check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
                            H5Sclose, "H5Screate_simple " + name);
     const Id dcpl = Check(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "H5Pcreate");
@@ -336,7 +349,7 @@ void WriteDataset(hid_t parent,
               "H5Pset_chunk " + name);
         bool shuffle = element > 1;
         if (H5Tequal(file_type, memory_type) > 0) {  // else HDF5 converts and filters
-            writer.emplace(dims, chunk, element, data);
+            writer.emplace(dims, chunk, element, data, fill);
             shuffle = writer->Choose();
         }
         if (shuffle) {
@@ -352,9 +365,34 @@ void WriteDataset(hid_t parent,
             writer->Write(dataset.get(), dims.size());
             return;
         }
+        std::vector<unsigned char> whole;
+        if (data == nullptr) {
+            whole.resize(static_cast<std::size_t>(count) * H5Tget_size(memory_type));
+            (*fill)(0, static_cast<std::size_t>(dims[0]), whole.data());
+            data = whole.data();
+        }
         Check(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
               "H5Dwrite " + name);
     }
+}
+}  // namespace
+
+void WriteDataset(hid_t parent,
+                  const std::string& name,
+                  hid_t file_type,
+                  hid_t memory_type,
+                  const std::vector<hsize_t>& dims,
+                  const void* data) {
+    WriteDatasetFrom(parent, name, file_type, memory_type, dims, data, nullptr);
+}
+
+void WriteDataset(hid_t parent,
+                  const std::string& name,
+                  hid_t file_type,
+                  hid_t memory_type,
+                  const std::vector<hsize_t>& dims,
+                  const RowFill& fill) {
+    WriteDatasetFrom(parent, name, file_type, memory_type, dims, nullptr, &fill);
 }
 
 void WriteAttribute(hid_t object, const std::string& name, double value) {

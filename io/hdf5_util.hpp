@@ -110,6 +110,30 @@ void WriteDataset(hid_t parent,
     WriteDataset(parent, name, Types<T>::File(), Types<T>::Memory(), dims, data.data());
 }
 
+/// Fills rows [first, first + count) of a dataset into `out` (row-major, memory type).
+using RowFill = std::function<void(std::size_t first, std::size_t count, void* out)>;
+
+/// Writes a dataset of `dims` whose rows come from `fill`, one chunk at a time: a large array
+/// is never held whole (the same file bytes as WriteDataset of the whole array). Exceptions of
+/// `fill` propagate.
+void WriteDataset(hid_t parent,
+                  const std::string& name,
+                  hid_t file_type,
+                  hid_t memory_type,
+                  const std::vector<hsize_t>& dims,
+                  const RowFill& fill);
+
+template <typename T, typename Fill>
+void WriteRows(hid_t parent,
+               const std::string& name,
+               const std::vector<hsize_t>& dims,
+               const Fill& fill) {  // fill(std::size_t first, std::size_t count, T* out)
+    WriteDataset(parent, name, Types<T>::File(), Types<T>::Memory(), dims,
+                 RowFill([&fill](std::size_t first, std::size_t count, void* out) {
+                     fill(first, count, static_cast<T*>(out));
+                 }));
+}
+
 /// Attributes: scalars, 1-D double arrays and UTF-8 fixed-length strings (NUL-padded; h5py
 /// reads them as bytes). casmap writes no variable-length data: those live in the global heap,
 /// which HDF5 1.10 decodes unsafely (hdf5_global_heap.hpp).

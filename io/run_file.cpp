@@ -94,48 +94,53 @@ void WriteScans(hid_t file, const fs::path& path, const RunData& data) {
     const std::size_t n = data.scans.size();
     const Id group = h5::CreateGroup(file, "scans");
     std::vector<double> stamps(n);
-    std::vector<float> ranges(n * beams);
-    std::vector<std::uint16_t> raw(n * beams);
-    std::vector<std::uint8_t> status(n * beams);
     for (std::size_t i = 0; i < n; ++i) {
-        const core::Scan& s = data.scans[i];
-        stamps[i] = s.stamp_s;
-        for (std::size_t j = 0; j < beams; ++j) {
-            const core::Beam& b = s.beams[j];
-            const std::size_t k = i * beams + j;
+        stamps[i] = data.scans[i].stamp_s;
+    }
+    // The N x B arrays go chunk by chunk (rows = scans) from the scans: never held whole.
+    const std::vector<hsize_t> dims2 = {n, beams};
+    const auto beam_rows = [&](auto value) {
+        return [&data, beams, value](std::size_t first, std::size_t count, auto* out) {
+            for (std::size_t i = first; i < first + count; ++i) {
+                for (std::size_t j = 0; j < beams; ++j) {
+                    *out++ = value(i, j);
+                }
+            }
+        };
+    };
+    h5::WriteDataset(group.get(), "stamp_s", {n}, stamps);
+    h5::WriteRows<float>(
+        group.get(), "ranges_m", dims2, beam_rows([&](std::size_t i, std::size_t j) {
+            const core::Beam& b = data.scans[i].beams[j];
             if (b.status == core::BeamStatus::kOk && !std::isfinite(b.range_m)) {
                 throw MakeInputError(
                     path.string(),
                     "scans[" + std::to_string(i) + "].beams[" + std::to_string(j) + "].range_m",
                     core::FormatNumber(b.range_m), "status ok needs a finite range");
             }
-            ranges[k] = b.status == core::BeamStatus::kOk ? b.range_m : kNaN;
-            raw[k] = b.raw;
-            status[k] = static_cast<std::uint8_t>(b.status);
-        }
-    }
-    const std::vector<hsize_t> dims2 = {n, beams};
-    h5::WriteDataset(group.get(), "stamp_s", {n}, stamps);
-    h5::WriteDataset(group.get(), "ranges_m", dims2, ranges);
-    h5::WriteDataset(group.get(), "raw", dims2, raw);
-    h5::WriteDataset(group.get(), "status", dims2, status);
+            return b.status == core::BeamStatus::kOk ? b.range_m : kNaN;
+        }));
+    h5::WriteRows<std::uint16_t>(
+        group.get(), "raw", dims2,
+        beam_rows([&](std::size_t i, std::size_t j) { return data.scans[i].beams[j].raw; }));
+    h5::WriteRows<std::uint8_t>(group.get(), "status", dims2,
+                                beam_rows([&](std::size_t i, std::size_t j) {
+                                    return static_cast<std::uint8_t>(data.scans[i].beams[j].status);
+                                }));
     if (!data.truth.empty()) {
-        std::vector<std::uint8_t> labels(n * beams);
-        std::vector<float> true_range(n * beams, kNaN);
         bool have_true_range = true;
-        for (std::size_t i = 0; i < n; ++i) {
-            const core::ScanTruth& t = data.truth[i];
+        for (const core::ScanTruth& t : data.truth) {
             have_true_range = have_true_range && !t.true_range_m.empty();
-            for (std::size_t j = 0; j < beams; ++j) {
-                labels[i * beams + j] = static_cast<std::uint8_t>(t.labels[j]);
-                if (!t.true_range_m.empty()) {
-                    true_range[i * beams + j] = t.true_range_m[j];
-                }
-            }
         }
-        h5::WriteDataset(group.get(), "labels", dims2, labels);
+        h5::WriteRows<std::uint8_t>(group.get(), "labels", dims2,
+                                    beam_rows([&](std::size_t i, std::size_t j) {
+                                        return static_cast<std::uint8_t>(data.truth[i].labels[j]);
+                                    }));
         if (have_true_range) {
-            h5::WriteDataset(group.get(), "true_range_m", dims2, true_range);
+            h5::WriteRows<float>(group.get(), "true_range_m", dims2,
+                                 beam_rows([&](std::size_t i, std::size_t j) {
+                                     return data.truth[i].true_range_m[j];
+                                 }));
         }
     }
     const core::Scan proto = n > 0 ? data.scans.front() : core::Scan{};
@@ -156,23 +161,32 @@ void WriteScans(hid_t file, const fs::path& path, const RunData& data) {
 void WritePoses(hid_t file, const core::Trajectory& poses) {
     const Id group = h5::CreateGroup(file, "poses");
     const std::size_t p = poses.size();
+    const std::vector<core::TimedPose>& samples = poses.samples();
     std::vector<double> stamps(p);
-    std::vector<double> xyz(p * 3);
-    std::vector<double> quat(p * 4);
     for (std::size_t i = 0; i < p; ++i) {
-        const core::TimedPose& tp = poses.samples()[i];
-        stamps[i] = tp.stamp_s;
-        for (int k = 0; k < 3; ++k) {
-            xyz[i * 3 + static_cast<std::size_t>(k)] = tp.world_T_sensor.translation[k];
-        }
-        const Eigen::Vector4d q = tp.world_T_sensor.rotation.coeffs();  // x, y, z, w
-        for (int k = 0; k < 4; ++k) {
-            quat[i * 4 + static_cast<std::size_t>(k)] = q[k];
-        }
+        stamps[i] = samples[i].stamp_s;
     }
     h5::WriteDataset(group.get(), "stamp_s", {p}, stamps);
-    h5::WriteDataset(group.get(), "xyz_m", {p, 3}, xyz);
-    h5::WriteDataset(group.get(), "quat_xyzw", {p, 4}, quat);
+    // Positions and orientations chunk by chunk (a 201 s table run has 201k poses).
+    h5::WriteRows<double>(group.get(), "xyz_m", {p, 3},
+                          [&](std::size_t first, std::size_t count, double* out) {
+                              for (std::size_t i = first; i < first + count; ++i) {
+                                  const Eigen::Vector3d& t = samples[i].world_T_sensor.translation;
+                                  for (int k = 0; k < 3; ++k) {
+                                      *out++ = t[k];
+                                  }
+                              }
+                          });
+    h5::WriteRows<double>(
+        group.get(), "quat_xyzw", {p, 4}, [&](std::size_t first, std::size_t count, double* out) {
+            for (std::size_t i = first; i < first + count; ++i) {
+                // x, y, z, w
+                const Eigen::Vector4d q = samples[i].world_T_sensor.rotation.coeffs();
+                for (int k = 0; k < 4; ++k) {
+                    *out++ = q[k];
+                }
+            }
+        });
 }
 
 void CheckLayer(const fs::path& path,
