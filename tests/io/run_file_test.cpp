@@ -346,6 +346,43 @@ TEST(RunFile, FailedWriteLeavesNoFileAndKeepsTheOldOne) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
 }
 
+// The N x B arrays are filled chunk by chunk (362 scans of float ranges per chunk): three
+// chunks, the last one partial, round-trip, and a bad beam in the last chunk still fails the
+// whole write naming the beam.
+TEST(RunFile, ChunkByChunkArraysRoundTripAndCheckEveryChunk) {
+    const fs::path dir = FreshDir("chunks");
+    RunData run = MakeRun(800, 181);
+    WriteRunFile(dir / "run.h5", run);
+    const RunData back = ReadRunFile(dir / "run.h5");
+    ASSERT_EQ(back.scans.size(), run.scans.size());
+    std::size_t mismatches = 0;
+    for (std::size_t i = 0; i < run.scans.size(); ++i) {
+        for (std::size_t j = 0; j < 181; ++j) {
+            const core::Beam& a = run.scans[i].beams[j];
+            const core::Beam& b = back.scans[i].beams[j];
+            const bool ok = a.status == core::BeamStatus::kOk;
+            mismatches += static_cast<std::size_t>(
+                b.status != a.status || b.raw != a.raw ||
+                !SameFloat(b.range_m, ok ? a.range_m : std::nanf("")) ||
+                back.truth[i].labels[j] != run.truth[i].labels[j] ||
+                !SameFloat(back.truth[i].true_range_m[j], run.truth[i].true_range_m[j]));
+        }
+    }
+    EXPECT_EQ(mismatches, 0U);
+
+    run.scans[700].beams[4].status = core::BeamStatus::kOk;
+    run.scans[700].beams[4].range_m = std::nanf("");
+    const fs::path bad_dir = FreshDir("chunks_bad");
+    try {
+        WriteRunFile(bad_dir / "run.h5", run);
+        FAIL() << "no error for an ok beam without a range";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("scans[700].beams[4].range_m"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_TRUE(fs::is_empty(bad_dir)) << "a temporary or partial file was left behind";
+}
+
 TEST(RunFile, UnwritableDirectoryIsInputError) {
     EXPECT_THROW(WriteRunFile("/nonexistent_casmap_dir/run.h5", RunData{}), InputError);
 }
