@@ -91,6 +91,8 @@ def main():
     out.append(f"// r = {float(r).hex()} ({float(r)!r}), v = {float(v)!r}\n")
     out.append("#include <array>\n#include <cstdint>\n")
     out.append("namespace casmap::sensor_models::ziggurat {\n")
+    out.append("// The generator's layout, so that its output and this file stay equal.")
+    out.append("// clang-format off")
     out.append(f"inline constexpr double kR = {float(r).hex()};")
     out.append(f"inline constexpr double kInvR = {float(1 / r).hex()};\n")
     out.append(f"inline constexpr std::array<std::uint64_t, {LAYERS}> kK = {{")
@@ -105,6 +107,7 @@ def main():
     for i in range(0, LAYERS + 1, 3):
         out.append("    " + " ".join(f"{fv[j].hex()}," for j in range(i, min(i + 3, LAYERS + 1))))
     out.append("};\n")
+    out.append("// clang-format on\n")
     out.append("}  // namespace casmap::sensor_models::ziggurat")
     print("\n".join(out))
 

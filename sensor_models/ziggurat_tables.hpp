@@ -9,6 +9,8 @@
 
 namespace casmap::sensor_models::ziggurat {
 
+// The generator's layout, so that its output and this file stay equal.
+// clang-format off
 inline constexpr double kR = 0x1.d3bb48209ad33p+1;
 inline constexpr double kInvR = 0x1.183aa6c20e8c1p-2;
 
@@ -256,5 +258,7 @@ inline constexpr std::array<double, 257> kF = {
     0x1.dd36fa704de92p-1, 0x1.e3f11e027f074p-1, 0x1.eb7545b6ca912p-1,
     0x1.f446ac979f084p-1, 0x1.0000000000000p+0,
 };
+
+// clang-format on
 
 }  // namespace casmap::sensor_models::ziggurat
