@@ -1,9 +1,5 @@
 #include "casmap/io/hdf5_util.hpp"
 
-#if defined(CASMAP_HAVE_LIBDEFLATE)
-#include <libdeflate.h>
-#endif
-
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
@@ -12,7 +8,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "casmap/io/deflate_stream.hpp"
+#include "casmap/io/hdf5_chunk_writer.hpp"
 #include "casmap/io/hdf5_global_heap.hpp"
 #include "casmap/io/hdf5_object_header.hpp"
 
@@ -43,189 +39,6 @@ std::string ClassName(H5T_class_t c) {
 // Object creation properties shared by groups and datasets: no access/modification times, so
 // the same content gives the same bytes.
 void NoTimes(hid_t plist) { Check(H5Pset_obj_track_times(plist, false), "H5Pset_obj_track_times"); }
-
-// H5Z shuffle: byte b of element i goes to b * count + i. The common sizes have their own
-// loops (the compiler vectorises them; ~6x faster than the general one).
-template <std::size_t kElement>
-void ShuffleFixed(const unsigned char* __restrict in,
-                  std::size_t count,
-                  unsigned char* __restrict out) {
-    for (std::size_t i = 0; i < count; ++i) {
-        for (std::size_t b = 0; b < kElement; ++b) {
-            out[b * count + i] = in[i * kElement + b];
-        }
-    }
-}
-
-void Shuffle(const unsigned char* in, std::size_t element, std::size_t count, unsigned char* out) {
-    switch (element) {
-        case 2:
-            ShuffleFixed<2>(in, count, out);
-            return;
-        case 4:
-            ShuffleFixed<4>(in, count, out);
-            return;
-        case 8:
-            ShuffleFixed<8>(in, count, out);
-            return;
-        default:
-            for (std::size_t b = 0; b < element; ++b) {
-                for (std::size_t i = 0; i < count; ++i) {
-                    out[b * count + i] = in[i * element + b];
-                }
-            }
-    }
-}
-
-// Chunks of whole rows written through the dataset's filter pipeline done here: HDF5's byte
-// shuffle (optional, chosen per dataset) and a zlib stream, stored with H5Dwrite_chunk. Every
-// HDF5 reader decodes them like its own chunks. The partial last chunk is padded with zeros
-// (readers ignore what lies outside the dataset).
-//
-// The encoder is chosen per dataset on its first chunk, deterministically (by sizes, never by
-// time): casmap's DeflateZlib (deflate_stream.hpp) keeps arrays that compress at least
-// kOwnMinRatio (labels, status, smooth poses and true ranges: 3-5x faster than libdeflate
-// there, and smaller) or come within 2 % of libdeflate's size; other noisy arrays (measured
-// ranges, moving orientations) go to libdeflate level 1 (when built with it), byte-shuffled
-// or not, whichever is smaller.
-class ChunkWriter {
-public:
-    ChunkWriter(const std::vector<hsize_t>& dims,
-                const std::vector<hsize_t>& chunk,
-                std::size_t element,
-                const void* data,
-                const RowFill* fill)
-        : element_(element),
-          rows_(static_cast<std::size_t>(dims[0])),
-          chunk_rows_(static_cast<std::size_t>(chunk[0])),
-          data_(static_cast<const unsigned char*>(data)),
-          fill_(fill) {
-        for (std::size_t k = 1; k < dims.size(); ++k) {
-            row_elements_ *= static_cast<std::size_t>(dims[k]);
-        }
-        chunk_elements_ = chunk_rows_ * row_elements_;
-        plain_.resize(chunk_elements_ * element_);
-        shuffled_.resize(chunk_elements_ * element_);
-    }
-
-    // Picks the encoder and the shuffle on the first chunk and keeps that chunk's stream.
-    // Returns whether the dataset's pipeline has the shuffle filter.
-    bool Choose() {
-        shuffle_ = element_ > 1;
-        Encode(0, first_);
-#if defined(CASMAP_HAVE_LIBDEFLATE)
-        if (first_.size() * kOwnMinRatio > chunk_elements_ * element_) {
-            compressor_.reset(libdeflate_alloc_compressor(1));
-            if (!compressor_) {
-                throw std::runtime_error("libdeflate: cannot allocate a compressor");
-            }
-            std::vector<unsigned char> own;
-            own.swap(first_);
-            const bool own_shuffle = shuffle_;
-            Encode(0, first_);
-            if (element_ > 1) {
-                std::vector<unsigned char> plain_stream;
-                shuffle_ = false;
-                Encode(0, plain_stream);
-                shuffle_ = plain_stream.size() >= first_.size();
-                if (!shuffle_) {
-                    first_.swap(plain_stream);
-                }
-            }
-            // Within 2 % of libdeflate's size (raw values, a table run's positions) casmap's
-            // encoder is still the faster one.
-            if (own.size() * 100 <= first_.size() * kOwnMaxExcessPercent) {
-                compressor_.reset();
-                shuffle_ = own_shuffle;
-                first_.swap(own);
-            }
-        }
-#endif
-        return shuffle_;
-    }
-
-    void Write(hid_t dataset, std::size_t rank) {
-        std::vector<hsize_t> offset(rank, 0);
-        for (std::size_t row = 0; row < rows_; row += chunk_rows_) {
-            if (row > 0) {
-                Encode(row, stream_);
-            } else {
-                stream_.swap(first_);
-            }
-            offset[0] = row;
-            Check(H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, offset.data(), stream_.size(),
-                                 stream_.data()),
-                  "H5Dwrite_chunk");
-        }
-    }
-
-private:
-    static constexpr std::size_t kOwnMinRatio = 4;
-    static constexpr std::size_t kOwnMaxExcessPercent = 102;
-
-    // The zlib stream of the chunk starting at `row`, with the current choices.
-    void Encode(std::size_t row, std::vector<unsigned char>& out) {
-        const std::size_t chunk_bytes = chunk_elements_ * element_;
-        const std::size_t used = std::min(chunk_rows_, rows_ - row) * row_elements_ * element_;
-        const unsigned char* in = nullptr;
-        if (fill_ != nullptr) {  // the rows straight into the chunk buffer
-            (*fill_)(row, std::min(chunk_rows_, rows_ - row), plain_.data());
-            std::fill(plain_.begin() + static_cast<std::ptrdiff_t>(used), plain_.end(), 0);
-            in = plain_.data();
-        } else {
-            in = data_ + row * row_elements_ * element_;
-            if (used < chunk_bytes) {
-                std::memcpy(plain_.data(), in, used);
-                std::fill(plain_.begin() + static_cast<std::ptrdiff_t>(used), plain_.end(), 0);
-                in = plain_.data();
-            }
-        }
-        DeflateLayout layout;
-        if (shuffle_) {
-            Shuffle(in, element_, chunk_elements_, shuffled_.data());
-            in = shuffled_.data();
-            // One segment per byte plane; repeats of the previous byte or row in the plane.
-            layout.segment_bytes = chunk_elements_;
-            layout.distance_a = 1;
-            layout.distance_b = row_elements_ > 1 ? row_elements_ : 0;
-        } else {  // repeats of the previous element or row
-            layout.distance_a = element_;
-            layout.distance_b = row_elements_ > 1 ? row_elements_ * element_ : 0;
-        }
-#if defined(CASMAP_HAVE_LIBDEFLATE)
-        if (compressor_) {
-            out.resize(libdeflate_zlib_compress_bound(compressor_.get(), chunk_bytes));
-            const std::size_t size = libdeflate_zlib_compress(compressor_.get(), in, chunk_bytes,
-                                                              out.data(), out.size());
-            if (size == 0) {
-                throw std::runtime_error("libdeflate: compression failed");
-            }
-            out.resize(size);
-            return;
-        }
-#endif
-        DeflateZlib({in, chunk_bytes}, layout, out);
-    }
-
-    std::size_t element_;
-    std::size_t rows_;
-    std::size_t chunk_rows_;
-    std::size_t row_elements_ = 1;
-    std::size_t chunk_elements_ = 0;
-    const unsigned char* data_;
-    const RowFill* fill_;
-    bool shuffle_ = false;
-#if defined(CASMAP_HAVE_LIBDEFLATE)
-    struct FreeCompressor {
-        void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
-    };
-    std::unique_ptr<libdeflate_compressor, FreeCompressor> compressor_;
-#endif
-    std::vector<unsigned char> plain_;
-    std::vector<unsigned char> shuffled_;
-    std::vector<unsigned char> first_;
-    std::vector<unsigned char> stream_;
-};
 
 Id ScalarSpace() { return Check(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate"); }
 
