@@ -281,27 +281,41 @@ void StoredBlocks(const unsigned char* data, std::size_t size, bool last, BitWri
     } while (done < size);
 }
 
-// One segment [begin, end) of `in`: a dynamic Huffman block, or stored blocks when those are
-// not larger. Matches: the longest of the two layout distances and the last position with
-// the same hashed 4 bytes (greedy, no lazy evaluation).
-void Segment(const unsigned char* in,
-             std::size_t begin,
-             std::size_t end,
-             bool last,
-             const std::array<std::size_t, 2>& dist,
-             bool use_hash,
-             HashTable& head,
-             std::vector<std::uint32_t>& symbols,
-             BitWriter& bits) {
+// Where one segment's match search looks: [begin, end) of `in`, the two layout distances
+// (0 = not used) and the last position + 1 of each hashed 4-byte word (null = not used).
+struct SegmentSearch {
+    const unsigned char* in = nullptr;
+    std::size_t begin = 0;
+    std::size_t end = 0;
+    std::size_t da = 0;
+    std::size_t db = 0;
+    std::uint32_t* table = nullptr;
+};
+
+// One dynamic block's symbol counts, Huffman code lengths and run-length coded header.
+struct BlockCodes {
     std::array<std::uint32_t, kLitLen> ll_freq{};
     std::array<std::uint32_t, kDist> d_freq{};
-    symbols.resize(end - begin);
-    std::uint32_t* const out_sym = symbols.data();
-    std::uint32_t* const table = head.data();
-    const std::size_t da = dist[0] <= kWindow ? dist[0] : 0;
-    const std::size_t db = dist[1] <= kWindow ? dist[1] : 0;
+    std::array<std::uint8_t, kLitLen> ll_len{};
+    std::array<std::uint8_t, kDist> d_len{};
+    int hlit = kLitLen;
+    int hdist = kDist;
+    std::array<std::pair<std::uint8_t, std::uint8_t>, kLitLen + kDist> rle{};  // symbol, extra
+    int n_rle = 0;
+    std::array<std::uint32_t, kCodeLen> cl_freq{};
+    std::array<std::uint8_t, kCodeLen> cl_len{};
+    int hclen = kCodeLen;
+};
+
+// The symbols of the segment into `out_sym` (a literal byte, or kMatchFlag | (distance - 1) << 8
+// | (length - 3)), counted in `codes`; returns how many. Matches: the longest of the two layout
+// distances and the last position with the same hashed 4 bytes (greedy, no lazy evaluation).
+std::size_t FindSymbols(const SegmentSearch& search, std::uint32_t* out_sym, BlockCodes& codes) {
+    const unsigned char* const in = search.in;
+    const std::size_t end = search.end;
+    std::uint32_t* const table = search.table;
     std::size_t n = 0;
-    for (std::size_t i = begin; i < end;) {
+    for (std::size_t i = search.begin; i < end;) {
         std::size_t best = 0;
         std::size_t best_d = 0;
         if (i + kMinMatch <= end) {
@@ -316,9 +330,9 @@ void Segment(const unsigned char* in,
                     }
                 }
             };
-            consider(da);
-            consider(db);
-            if (use_hash) {
+            consider(search.da);
+            consider(search.db);
+            if (table != nullptr) {
                 std::uint32_t& slot = table[Hash(here)];
                 const std::size_t hashed = slot != 0 ? i + 1 - slot : 0;
                 slot = static_cast<std::uint32_t>(i + 1);
@@ -328,41 +342,44 @@ void Segment(const unsigned char* in,
         if (best >= kMinMatch) {
             out_sym[n++] = kMatchFlag | static_cast<std::uint32_t>((best_d - 1) << 8) |
                            static_cast<std::uint32_t>(best - 3);
-            ++ll_freq[kLength.symbol[best]];
-            ++d_freq[static_cast<std::size_t>(DistanceSymbol(best_d))];
+            ++codes.ll_freq[kLength.symbol[best]];
+            ++codes.d_freq[static_cast<std::size_t>(DistanceSymbol(best_d))];
             i += best;
         } else {
             out_sym[n++] = in[i];
-            ++ll_freq[in[i]];
+            ++codes.ll_freq[in[i]];
             ++i;
         }
     }
-    ll_freq[kEndOfBlock] = 1;
+    codes.ll_freq[kEndOfBlock] = 1;
+    return n;
+}
 
-    std::array<std::uint8_t, kLitLen> ll_len{};
-    std::array<std::uint8_t, kDist> d_len{};
-    HuffmanLengths(ll_freq.data(), kLitLen, 15, ll_len.data());
-    HuffmanLengths(d_freq.data(), kDist, 15, d_len.data());
-    int hlit = kLitLen;
-    while (hlit > 257 && ll_len[static_cast<std::size_t>(hlit - 1)] == 0) {
-        --hlit;
+// Huffman code lengths of both alphabets, and how many of each the header lists.
+void LiteralDistanceLengths(BlockCodes& codes) {
+    HuffmanLengths(codes.ll_freq.data(), kLitLen, 15, codes.ll_len.data());
+    HuffmanLengths(codes.d_freq.data(), kDist, 15, codes.d_len.data());
+    codes.hlit = kLitLen;
+    while (codes.hlit > 257 && codes.ll_len[static_cast<std::size_t>(codes.hlit - 1)] == 0) {
+        --codes.hlit;
     }
-    int hdist = kDist;
-    while (hdist > 1 && d_len[static_cast<std::size_t>(hdist - 1)] == 0) {
-        --hdist;
+    codes.hdist = kDist;
+    while (codes.hdist > 1 && codes.d_len[static_cast<std::size_t>(codes.hdist - 1)] == 0) {
+        --codes.hdist;
     }
-    // The code lengths of both alphabets as one run-length coded sequence (symbols 0-18).
+}
+
+// The code lengths of both alphabets as one run-length coded sequence (symbols 0-18), then
+// the code-length code's own lengths and how many of them the header lists.
+void HeaderRunLengths(BlockCodes& codes) {
     std::array<std::uint8_t, kLitLen + kDist> seq{};
-    std::copy_n(ll_len.begin(), hlit, seq.begin());
-    std::copy_n(d_len.begin(), hdist, seq.begin() + hlit);
-    const int total = hlit + hdist;
-    std::array<std::pair<std::uint8_t, std::uint8_t>, kLitLen + kDist> rle{};  // symbol, extra
-    int n_rle = 0;
-    std::array<std::uint32_t, kCodeLen> cl_freq{};
-    const auto emit = [&](int symbol, int extra) {
-        rle[static_cast<std::size_t>(n_rle++)] = {static_cast<std::uint8_t>(symbol),
-                                                  static_cast<std::uint8_t>(extra)};
-        ++cl_freq[static_cast<std::size_t>(symbol)];
+    std::copy_n(codes.ll_len.begin(), codes.hlit, seq.begin());
+    std::copy_n(codes.d_len.begin(), codes.hdist, seq.begin() + codes.hlit);
+    const int total = codes.hlit + codes.hdist;
+    const auto emit = [&codes](int symbol, int extra) {
+        codes.rle[static_cast<std::size_t>(codes.n_rle++)] = {static_cast<std::uint8_t>(symbol),
+                                                              static_cast<std::uint8_t>(extra)};
+        ++codes.cl_freq[static_cast<std::size_t>(symbol)];
     };
     for (int i = 0; i < total;) {
         const int v = seq[static_cast<std::size_t>(i)];
@@ -390,63 +407,76 @@ void Segment(const unsigned char* in,
             emit(v, 0);
         }
     }
-    std::array<std::uint8_t, kCodeLen> cl_len{};
-    HuffmanLengths(cl_freq.data(), kCodeLen, 7, cl_len.data());
-    int hclen = kCodeLen;
-    while (hclen > 4 &&
-           cl_len[static_cast<std::size_t>(kCodeLenOrder[static_cast<std::size_t>(hclen - 1)])] ==
-               0) {
-        --hclen;
+    HuffmanLengths(codes.cl_freq.data(), kCodeLen, 7, codes.cl_len.data());
+    codes.hclen = kCodeLen;
+    while (codes.hclen > 4 && codes.cl_len[static_cast<std::size_t>(
+                                  kCodeLenOrder[static_cast<std::size_t>(codes.hclen - 1)])] == 0) {
+        --codes.hclen;
     }
+}
 
-    // Exact size of the dynamic block against stored blocks (header + worst-case padding).
-    std::uint64_t dynamic_bits = 3 + 5 + 5 + 4 + 3 * static_cast<std::uint64_t>(hclen);
+// Exact size in bits of the dynamic block (header, symbols, extra bits).
+std::uint64_t DynamicBlockBits(const BlockCodes& codes) {
+    std::uint64_t dynamic_bits = 3 + 5 + 5 + 4 + 3 * static_cast<std::uint64_t>(codes.hclen);
     for (int s = 0; s < kCodeLen; ++s) {
         const int extra = s == 16 ? 2 : (s == 17 ? 3 : (s == 18 ? 7 : 0));
-        dynamic_bits += static_cast<std::uint64_t>(cl_freq[static_cast<std::size_t>(s)]) *
-                        static_cast<std::uint64_t>(cl_len[static_cast<std::size_t>(s)] + extra);
+        dynamic_bits +=
+            static_cast<std::uint64_t>(codes.cl_freq[static_cast<std::size_t>(s)]) *
+            static_cast<std::uint64_t>(codes.cl_len[static_cast<std::size_t>(s)] + extra);
     }
     for (int s = 0; s < kLitLen; ++s) {
         const int extra = s > kEndOfBlock ? LengthExtraBits(s) : 0;
-        dynamic_bits += static_cast<std::uint64_t>(ll_freq[static_cast<std::size_t>(s)]) *
-                        static_cast<std::uint64_t>(ll_len[static_cast<std::size_t>(s)] + extra);
+        dynamic_bits +=
+            static_cast<std::uint64_t>(codes.ll_freq[static_cast<std::size_t>(s)]) *
+            static_cast<std::uint64_t>(codes.ll_len[static_cast<std::size_t>(s)] + extra);
     }
     for (int s = 0; s < kDist; ++s) {
         const int extra = DistanceExtraBits(s);
-        dynamic_bits += static_cast<std::uint64_t>(d_freq[static_cast<std::size_t>(s)]) *
-                        static_cast<std::uint64_t>(d_len[static_cast<std::size_t>(s)] + extra);
+        dynamic_bits +=
+            static_cast<std::uint64_t>(codes.d_freq[static_cast<std::size_t>(s)]) *
+            static_cast<std::uint64_t>(codes.d_len[static_cast<std::size_t>(s)] + extra);
     }
-    const std::size_t size = end - begin;
-    const std::uint64_t stored_bits =
-        8 * static_cast<std::uint64_t>(size) + 42 * (size / kMaxStored + 1);
-    if (dynamic_bits >= stored_bits) {
-        StoredBlocks(in + begin, size, last, bits);
-        return;
-    }
+    return dynamic_bits;
+}
 
+// The dynamic block's header: sizes, the code-length code, the run-length coded lengths.
+void EmitDynamicHeader(const BlockCodes& codes,
+                       const std::array<std::uint16_t, kCodeLen>& cl_code,
+                       bool last,
+                       BitWriter& bits) {
+    bits.Put(last ? 1U : 0U, 1);
+    bits.Put(2U, 2);  // dynamic Huffman codes
+    bits.Put(static_cast<std::uint64_t>(codes.hlit - 257), 5);
+    bits.Put(static_cast<std::uint64_t>(codes.hdist - 1), 5);
+    bits.Put(static_cast<std::uint64_t>(codes.hclen - 4), 4);
+    for (int k = 0; k < codes.hclen; ++k) {
+        bits.Put(codes.cl_len[static_cast<std::size_t>(kCodeLenOrder[static_cast<std::size_t>(k)])],
+                 3);
+    }
+    for (int k = 0; k < codes.n_rle; ++k) {
+        const auto [symbol, extra] = codes.rle[static_cast<std::size_t>(k)];
+        bits.Put(cl_code[symbol], codes.cl_len[symbol]);
+        if (symbol >= 16) {
+            bits.Put(extra, symbol == 16 ? 2 : (symbol == 17 ? 3 : 7));
+        }
+    }
+}
+
+// The whole dynamic block: header, the symbols (FindSymbols' encoding), end of block.
+void EmitDynamicBlock(const BlockCodes& codes,
+                      std::span<const std::uint32_t> symbols,
+                      bool last,
+                      BitWriter& bits) {
+    const auto& ll_len = codes.ll_len;
+    const auto& d_len = codes.d_len;
     std::array<std::uint16_t, kLitLen> ll_code{};
     std::array<std::uint16_t, kDist> d_code{};
     std::array<std::uint16_t, kCodeLen> cl_code{};
     CanonicalCodes(ll_len.data(), kLitLen, ll_code.data());
     CanonicalCodes(d_len.data(), kDist, d_code.data());
-    CanonicalCodes(cl_len.data(), kCodeLen, cl_code.data());
-    bits.Put(last ? 1U : 0U, 1);
-    bits.Put(2U, 2);  // dynamic Huffman codes
-    bits.Put(static_cast<std::uint64_t>(hlit - 257), 5);
-    bits.Put(static_cast<std::uint64_t>(hdist - 1), 5);
-    bits.Put(static_cast<std::uint64_t>(hclen - 4), 4);
-    for (int k = 0; k < hclen; ++k) {
-        bits.Put(cl_len[static_cast<std::size_t>(kCodeLenOrder[static_cast<std::size_t>(k)])], 3);
-    }
-    for (int k = 0; k < n_rle; ++k) {
-        const auto [symbol, extra] = rle[static_cast<std::size_t>(k)];
-        bits.Put(cl_code[symbol], cl_len[symbol]);
-        if (symbol >= 16) {
-            bits.Put(extra, symbol == 16 ? 2 : (symbol == 17 ? 3 : 7));
-        }
-    }
-    for (std::size_t k = 0; k < n; ++k) {
-        const std::uint32_t s = symbols[k];
+    CanonicalCodes(codes.cl_len.data(), kCodeLen, cl_code.data());
+    EmitDynamicHeader(codes, cl_code, last, bits);
+    for (const std::uint32_t s : symbols) {
         if ((s & kMatchFlag) == 0) {
             bits.Put(ll_code[s], ll_len[s]);
             continue;
@@ -464,6 +494,27 @@ void Segment(const unsigned char* in,
             d_len[ds] + DistanceExtraBits(dsym));
     }
     bits.Put(ll_code[kEndOfBlock], ll_len[kEndOfBlock]);
+}
+
+// One segment of the input: a dynamic Huffman block, or stored blocks when those are not
+// larger (exact dynamic size against stored blocks' header + worst-case padding).
+void Segment(const SegmentSearch& search,
+             bool last,
+             std::vector<std::uint32_t>& symbols,
+             BitWriter& bits) {
+    const std::size_t size = search.end - search.begin;
+    symbols.resize(size);
+    BlockCodes codes;
+    const std::size_t n = FindSymbols(search, symbols.data(), codes);
+    LiteralDistanceLengths(codes);
+    HeaderRunLengths(codes);
+    const std::uint64_t stored_bits =
+        8 * static_cast<std::uint64_t>(size) + 42 * (size / kMaxStored + 1);
+    if (DynamicBlockBits(codes) >= stored_bits) {
+        StoredBlocks(search.in + search.begin, size, last, bits);
+        return;
+    }
+    EmitDynamicBlock(codes, {symbols.data(), n}, last, bits);
 }
 
 }  // namespace
@@ -503,13 +554,18 @@ void DeflateZlib(std::span<const unsigned char> in,
     if (size == 0) {
         StoredBlocks(in.data(), 0, true, bits);
     } else {
-        const std::array<std::size_t, 2> dist = {layout.distance_a, layout.distance_b};
         thread_local std::vector<std::uint32_t> symbols;
         thread_local HashTable head;
         head.fill(0);
+        SegmentSearch search;
+        search.in = in.data();
+        search.da = layout.distance_a <= kWindow ? layout.distance_a : 0;
+        search.db = layout.distance_b <= kWindow ? layout.distance_b : 0;
+        search.table = layout.hashed ? head.data() : nullptr;
         for (std::size_t begin = 0; begin < size; begin += segment) {
-            const std::size_t end = std::min(size, begin + segment);
-            Segment(in.data(), begin, end, end == size, dist, layout.hashed, head, symbols, bits);
+            search.begin = begin;
+            search.end = std::min(size, begin + segment);
+            Segment(search, search.end == size, symbols, bits);
         }
     }
     bits.Align();
