@@ -246,6 +246,8 @@ private:
     void Encode(double range_m, PulseRng& rng, core::BeamLabel lost, PulseResult& out) const;
     void SetCode(core::BeamStatus status, core::BeamLabel label, PulseResult& out) const;
     void SetSpike(double range_m, PulseResult& out) const;
+    // BeamTimeOffsetS from the beam index (beam_offset_s_ caches it per beam).
+    [[nodiscard]] double ComputeBeamTimeOffsetS(std::size_t beam) const;
 
     Lms200Config config_;
     std::uint64_t seed_ = 0;
@@ -266,8 +268,6 @@ private:
     std::vector<double> bias_table_;  // MaterialBiasM of the first surface ids
     std::vector<double> beam_cos_;
     std::vector<double> beam_sin_;
-    [[nodiscard]] double ComputeBeamTimeOffsetS(std::size_t beam) const;
-
     std::vector<double> beam_offset_s_;  // BeamTimeOffsetS per beam
     double max_beam_offset_s_ = 0.0;
 };
