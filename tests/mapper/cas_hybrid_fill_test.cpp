@@ -24,8 +24,7 @@ using test_maps::Maps;
 using test_maps::Noise;
 using test_maps::NoisyFloor;
 using test_maps::PoleWithTrailAndHalo;
-
-bool SameBits(float a, float b) { return std::memcmp(&a, &b, 4) == 0; }
+using test_maps::SameBits;
 
 // A 20 x 10 box (rows 10-29, columns 10-19) at 0.3 m +- 2 mm on the noisy floor, every cell
 // seen `certainty` times, and its shadow: columns 20-23 of the box's rows never observed.

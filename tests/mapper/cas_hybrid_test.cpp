@@ -27,8 +27,6 @@ using test_maps::NoisyFloor;
 using test_maps::PoleWithTrailAndHalo;
 using test_maps::SameBits;
 
-bool SameBits(float a, float b) { return std::memcmp(&a, &b, 4) == 0; }
-
 // A 10 x 10 box (rows 20-29, columns 10-19) at 0.3 m +- 2 mm on the noisy floor.
 Maps NoisyBox(float certainty) {
     Maps p = NoisyFloor();

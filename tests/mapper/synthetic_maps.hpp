@@ -55,6 +55,9 @@ inline Maps PoleWithTrailAndHalo() {
     return p;
 }
 
+// Bit equality of two floats (NaN payloads and signed zeros included).
+inline bool SameBits(float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0; }
+
 // True when both maps hold the same floats bit for bit (NaN payloads included).
 inline bool SameBits(const core::MapF& a, const core::MapF& b) {
     return a.data.size() == b.data.size() &&

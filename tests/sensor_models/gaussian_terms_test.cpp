@@ -23,6 +23,29 @@ double Ulps(double a, double b) {
     return std::abs(a - b) / ulp;
 }
 
+// One random pulse: 1..kMaxSubrays echoes at 0.5-8 m with energies 1e-3..1e3, a width sigma
+// of 1.5-51.5 mm (c = 1 / (2 sigma^2)) and a waveform position x within +-1 sigma of an echo.
+struct Pulse {
+    std::vector<EchoSample> samples;
+    double c = 0.0;
+    double x = 0.0;
+};
+
+Pulse RandomPulse(std::mt19937_64& gen) {
+    std::uniform_real_distribution<double> range(0.5, 8.0);
+    std::uniform_real_distribution<double> energy(1e-3, 1e3);
+    Pulse p;
+    p.samples.resize(1 + gen() % kMaxSubrays);
+    for (auto& e : p.samples) {
+        e = {range(gen), energy(gen)};
+    }
+    const double sigma = 0.0015 + 0.05 * static_cast<double>(gen() % 100) / 100.0;
+    p.c = 0.5 / (sigma * sigma);
+    p.x = p.samples[gen() % p.samples.size()].range_m +
+          (static_cast<double>(gen() % 200) - 100.0) * 0.01 * sigma;
+    return p;
+}
+
 TEST(GaussianTerms, ExpIsWithinTwoUlpOnItsDomain) {
     const std::uint64_t seed = 20261128;
     SCOPED_TRACE("seed " + std::to_string(seed));
@@ -47,18 +70,12 @@ TEST(GaussianTerms, ExpIsWithinTwoUlpOnItsDomain) {
 
 TEST(GaussianTerms, TermsMatchTheClosedForm) {
     std::mt19937_64 gen(7);
-    std::uniform_real_distribution<double> range(0.5, 8.0);
-    std::uniform_real_distribution<double> energy(1e-3, 1e3);
     for (int trial = 0; trial < 2000; ++trial) {
-        const std::size_t n = 1 + gen() % kMaxSubrays;
-        std::vector<EchoSample> s(n);
-        for (auto& e : s) {
-            e = {range(gen), energy(gen)};
-        }
-        const double sigma = 0.0015 + 0.05 * static_cast<double>(gen() % 100) / 100.0;
-        const double c = 0.5 / (sigma * sigma);
-        const double x =
-            s[gen() % n].range_m + (static_cast<double>(gen() % 200) - 100.0) * 0.01 * sigma;
+        const Pulse p = RandomPulse(gen);
+        const std::vector<EchoSample>& s = p.samples;
+        const std::size_t n = s.size();
+        const double c = p.c;
+        const double x = p.x;
         std::vector<double> term(n);
         GaussianTerms(s.data(), n, x, c, term.data());
         for (std::size_t i = 0; i < n; ++i) {
@@ -79,19 +96,13 @@ TEST(GaussianTerms, EveryCloneGivesTheScalarBits) {
     const std::uint64_t seed = 20261129;
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 gen(seed);
-    std::uniform_real_distribution<double> range(0.5, 8.0);
-    std::uniform_real_distribution<double> energy(1e-3, 1e3);
     std::size_t differing = 0;
     for (int trial = 0; trial < 2000; ++trial) {
-        const std::size_t n = 1 + gen() % kMaxSubrays;
-        std::vector<EchoSample> s(n);
-        for (auto& e : s) {
-            e = {range(gen), energy(gen)};
-        }
-        const double sigma = 0.0015 + 0.05 * static_cast<double>(gen() % 100) / 100.0;
-        const double c = 0.5 / (sigma * sigma);
-        const double x =
-            s[gen() % n].range_m + (static_cast<double>(gen() % 200) - 100.0) * 0.01 * sigma;
+        const Pulse p = RandomPulse(gen);
+        const std::vector<EchoSample>& s = p.samples;
+        const std::size_t n = s.size();
+        const double c = p.c;
+        const double x = p.x;
         std::vector<double> term(n);
         GaussianTerms(s.data(), n, x, c, term.data());
         for (std::size_t i = 0; i < n; ++i) {
