@@ -195,6 +195,18 @@ const std::map<std::string, Setter, std::less<>>& Setters() {
          [](FilterParams& p, auto n, auto v) {
              p.range_jump.chord_tol_m = ParseRange(n, v, 0, kInf, false);
          }},
+        {"sweep_jump.jump_min_m",
+         [](FilterParams& p, auto n, auto v) {
+             p.sweep_jump.jump_min_m = ParseRange(n, v, 0, kInf, true);
+         }},
+        {"sweep_jump.margin_m",
+         [](FilterParams& p, auto n, auto v) {
+             p.sweep_jump.margin_m = ParseRange(n, v, 0, kInf, false);
+         }},
+        {"sweep_jump.max_angle_deg",
+         [](FilterParams& p, auto n, auto v) {
+             p.sweep_jump.max_angle_deg = ParseBetween(n, v, 0, 90);
+         }},
         {"kalman.range_sigma_m",
          [](FilterParams& p, auto n, auto v) {
              p.kalman.range_sigma_m = ParseRange(n, v, 0, kInf, false);
@@ -372,6 +384,7 @@ void FilterParams::Validate() const {
                baseline.center_weight, "allowed: odd integer >= 1");
     shadow.Validate();  // InputError naming shadow.<field>, range_jump.<field>, kalman.<field>
     range_jump.Validate();
+    sweep_jump.Validate();
     kalman.Validate();
 }
 

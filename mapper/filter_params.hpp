@@ -7,6 +7,7 @@
 
 #include "casmap/mapper/kalman_noise.hpp"
 #include "casmap/mapper/scan_filters.hpp"
+#include "casmap/mapper/sweep_jump.hpp"
 #include "casmap/mapper/unknown.hpp"
 
 namespace casmap::mapper {
@@ -113,7 +114,8 @@ struct BaselineParams {
 
 /// Every filter parameter, settable by name (NAME=VALUE; `casmap filter --set`, Python
 /// keywords): the map filters' (CAS and its variants, the baselines) and the mapping stages' a
-/// named pipeline may use: the scan pre-filters (shadow.<field>, range_jump.<field>) and the
+/// named pipeline may use: the scan pre-filters (shadow.<field>, range_jump.<field>,
+/// sweep_jump.<field>) and the
 /// Kalman mapper mode's noise model (kalman.<field>). A stage's parameters matter only to
 /// pipelines that run the stage.
 struct FilterParams {
@@ -122,6 +124,7 @@ struct FilterParams {
     ShadowFilterConfig shadow;   // shadow.min_angle_deg, .max_angle_deg, .window, .neighbors,
                                  // .remove_start_point
     RangeJumpConfig range_jump;  // range_jump.jump_min_m, .margin_m, .chord_tol_m
+    SweepJumpConfig sweep_jump;  // sweep_jump.jump_min_m, .margin_m, .max_angle_deg
     KalmanNoiseConfig kalman;    // kalman.range_sigma_m, .beam_constant_m, .beam_angle_rad,
                                  // .min_variance_m2, .mahalanobis_gate, .multi_height_noise_m2
 

@@ -152,6 +152,11 @@ std::string FilterParamsYaml(const mapper::FilterParams& p) {
     io::EmitNumber(out, "margin_m", p.range_jump.margin_m);
     io::EmitNumber(out, "chord_tol_m", p.range_jump.chord_tol_m);
     out << YAML::EndMap;
+    out << YAML::Key << "sweep_jump" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    io::EmitNumber(out, "jump_min_m", p.sweep_jump.jump_min_m);
+    io::EmitNumber(out, "margin_m", p.sweep_jump.margin_m);
+    io::EmitNumber(out, "max_angle_deg", p.sweep_jump.max_angle_deg);
+    out << YAML::EndMap;
     out << YAML::Key << "kalman" << YAML::Value << YAML::Flow << YAML::BeginMap;
     io::EmitNumber(out, "range_sigma_m", p.kalman.range_sigma_m);
     io::EmitNumber(out, "beam_constant_m", p.kalman.beam_constant_m);

@@ -37,6 +37,7 @@ const std::vector<PipelineSpec>& AllPipelines() {
     constexpr Prefilter kNone = Prefilter::kNone;
     constexpr Prefilter kShadow = Prefilter::kShadow;
     constexpr Prefilter kJump = Prefilter::kRangeJump;
+    constexpr Prefilter kSweep = Prefilter::kSweepJump;
     static const std::vector<PipelineSpec> all = {
         {"cas", kPaper, kNone, FilterMethod::kCas, "Eq. 1-6 map, CAS filter (Eq. 7-10)"},
         {"wiener", kPaper, kNone, FilterMethod::kWiener, "Eq. 1-6 map, 5 x 5 Wiener filter"},
@@ -67,6 +68,14 @@ const std::vector<PipelineSpec>& AllPipelines() {
          "range-jump scan filter, Eq. 1-6 map, cas_terrain"},
         {"range_jump_median", kPaper, kJump, FilterMethod::kMedian,
          "range-jump scan filter, Eq. 1-6 map, 5 x 5 median"},
+        {"sweep_jump", kPaper, kSweep, std::nullopt,
+         "sweep-jump scan filter (mixed pixels across consecutive scans), Eq. 1-6 map"},
+        {"sweep_jump_cas", kPaper, kSweep, FilterMethod::kCas,
+         "sweep-jump scan filter, Eq. 1-6 map, CAS"},
+        {"sweep_jump_median", kPaper, kSweep, FilterMethod::kMedian,
+         "sweep-jump scan filter, Eq. 1-6 map, 5 x 5 median"},
+        {"sweep_jump_hybrid", kPaper, kSweep, FilterMethod::kCasHybrid,
+         "sweep-jump scan filter, Eq. 1-6 map, cas_hybrid"},
     };
     return all;
 }

@@ -102,6 +102,10 @@ std::string StageKey(const PipelineSpec& spec, const mapper::FilterParams& p) {
         put(p.range_jump.jump_min_m);
         put(p.range_jump.margin_m);
         put(p.range_jump.chord_tol_m);
+    } else if (spec.prefilter == Prefilter::kSweepJump) {
+        put(p.sweep_jump.jump_min_m);
+        put(p.sweep_jump.margin_m);
+        put(p.sweep_jump.max_angle_deg);
     }
     if (spec.mode == MapperMode::kKalman) {
         const mapper::KalmanNoiseConfig& k = p.kalman;

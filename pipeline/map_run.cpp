@@ -60,7 +60,11 @@ Prefilter ParsePrefilter(std::string_view text, const std::string& field) {
     if (text == "range_jump") {
         return Prefilter::kRangeJump;
     }
-    throw MakeInputError("", field, std::string(text), "allowed: none | shadow | range_jump");
+    if (text == "sweep_jump") {
+        return Prefilter::kSweepJump;
+    }
+    throw MakeInputError("", field, std::string(text),
+                         "allowed: none | shadow | range_jump | sweep_jump");
 }
 
 std::string_view ToString(Prefilter prefilter) {
@@ -69,6 +73,8 @@ std::string_view ToString(Prefilter prefilter) {
             return "shadow";
         case Prefilter::kRangeJump:
             return "range_jump";
+        case Prefilter::kSweepJump:
+            return "sweep_jump";
         case Prefilter::kNone:
             break;
     }
@@ -81,18 +87,20 @@ void MapSettings::Validate() const {
     check.NonNegative("delta_l_m", delta_l_m, "allowed: finite number >= 0");
     shadow.Validate();
     range_jump.Validate();
+    sweep_jump.Validate();
     kalman.Validate();
 }
 
 void SetStageParams(MapSettings& settings, const mapper::FilterParams& params) {
     settings.shadow = params.shadow;
     settings.range_jump = params.range_jump;
+    settings.sweep_jump = params.sweep_jump;
     settings.kalman = params.kalman;
 }
 
 bool IsStageParameter(std::string_view name) {
     return name.starts_with("shadow.") || name.starts_with("range_jump.") ||
-           name.starts_with("kalman.");
+           name.starts_with("sweep_jump.") || name.starts_with("kalman.");
 }
 
 void ApplyStageSettings(MapSettings& settings,
@@ -101,6 +109,7 @@ void ApplyStageSettings(MapSettings& settings,
     mapper::FilterParams params;
     params.shadow = settings.shadow;
     params.range_jump = settings.range_jump;
+    params.sweep_jump = settings.sweep_jump;
     params.kalman = settings.kalman;
     for (const std::string& a : assignments) {
         const std::size_t eq = a.find('=');
@@ -111,13 +120,15 @@ void ApplyStageSettings(MapSettings& settings,
         if (!IsStageParameter(name)) {
             throw MakeInputError("", field, a,
                                  "not a mapping-stage parameter; allowed: shadow.<field>, "
-                                 "range_jump.<field>, kalman.<field> (map filters' parameters "
+                                 "range_jump.<field>, sweep_jump.<field>, kalman.<field> (map "
+                                 "filters' parameters "
                                  "belong to casmap filter / bench)");
         }
-        const bool used = name.starts_with("shadow.") ? settings.prefilter == Prefilter::kShadow
-                          : name.starts_with("range_jump.")
-                              ? settings.prefilter == Prefilter::kRangeJump
-                              : settings.mode == MapperMode::kKalman;
+        const bool used =
+            name.starts_with("shadow.")       ? settings.prefilter == Prefilter::kShadow
+            : name.starts_with("range_jump.") ? settings.prefilter == Prefilter::kRangeJump
+            : name.starts_with("sweep_jump.") ? settings.prefilter == Prefilter::kSweepJump
+                                              : settings.mode == MapperMode::kKalman;
         if (!used) {
             throw MakeInputError("", field, a,
                                  name.starts_with("kalman.")
@@ -138,10 +149,29 @@ std::vector<std::uint8_t> PrefilterLabels(const core::Scan& scan, const MapSetti
             return mapper::ShadowFilterLabels(scan, settings.shadow);
         case Prefilter::kRangeJump:
             return mapper::RangeJumpLabels(scan, settings.range_jump);
+        case Prefilter::kSweepJump:
+            throw MakeInputError("", "prefilter", "sweep_jump",
+                                 "compares each scan with its neighbours; label whole runs "
+                                 "(PrefilterRunLabels)");
         case Prefilter::kNone:
             break;
     }
     return {};
+}
+
+std::vector<std::vector<std::uint8_t>> PrefilterRunLabels(const std::vector<core::Scan>& scans,
+                                                          const core::Trajectory& world_T_sensor,
+                                                          const MapSettings& settings) {
+    if (settings.prefilter == Prefilter::kSweepJump) {
+        return mapper::SweepJumpLabels(scans, world_T_sensor, settings.sweep_jump);
+    }
+    std::vector<std::vector<std::uint8_t>> labels(scans.size());
+    if (settings.prefilter != Prefilter::kNone) {
+        for (std::size_t k = 0; k < scans.size(); ++k) {
+            labels[k] = PrefilterLabels(scans[k], settings);
+        }
+    }
+    return labels;
 }
 
 namespace {
@@ -151,6 +181,14 @@ void AddScans(Mapper& mapper,
               const std::vector<core::Scan>& scans,
               const core::Trajectory& world_T_sensor,
               const MapSettings& settings) {
+    if (settings.prefilter == Prefilter::kSweepJump) {
+        const std::vector<std::vector<std::uint8_t>> keep =
+            mapper::SweepJumpLabels(scans, world_T_sensor, settings.sweep_jump);
+        for (std::size_t k = 0; k < scans.size(); ++k) {
+            mapper.AddScan(scans[k], world_T_sensor, keep[k]);
+        }
+        return;
+    }
     for (const core::Scan& scan : scans) {
         if (settings.prefilter == Prefilter::kNone) {
             mapper.AddScan(scan, world_T_sensor);
@@ -319,6 +357,13 @@ std::string MapConfigYaml(const std::string& run_path,
         io::EmitNumber(out, "jump_min_m", st.range_jump.jump_min_m);
         io::EmitNumber(out, "margin_m", st.range_jump.margin_m);
         io::EmitNumber(out, "chord_tol_m", st.range_jump.chord_tol_m);
+        out << YAML::EndMap;
+    }
+    if (st.prefilter == Prefilter::kSweepJump) {
+        out << YAML::Key << "sweep_jump" << YAML::Value << YAML::BeginMap;
+        io::EmitNumber(out, "jump_min_m", st.sweep_jump.jump_min_m);
+        io::EmitNumber(out, "margin_m", st.sweep_jump.margin_m);
+        io::EmitNumber(out, "max_angle_deg", st.sweep_jump.max_angle_deg);
         out << YAML::EndMap;
     }
     if (st.mode == MapperMode::kKalman) {

@@ -18,6 +18,7 @@
 #include "casmap/mapper/filter_params.hpp"
 #include "casmap/mapper/kalman_noise.hpp"
 #include "casmap/mapper/scan_filters.hpp"
+#include "casmap/mapper/sweep_jump.hpp"
 #include "casmap/mapper/terrain_mapper.hpp"
 #include "casmap/mapper/unknown.hpp"
 
@@ -32,8 +33,8 @@ enum class MapperMode { kPaper, kKalman };
 
 /// Optional scan-domain pre-filter run on every scan before the mapper; its per-beam labels
 /// are the mapper's `keep` (mapper/scan_filters.hpp).
-enum class Prefilter { kNone, kShadow, kRangeJump };
-/// "none" | "shadow" | "range_jump"; throws InputError naming `field`.
+enum class Prefilter { kNone, kShadow, kRangeJump, kSweepJump };
+/// "none" | "shadow" | "range_jump" | "sweep_jump"; throws InputError naming `field`.
 [[nodiscard]] Prefilter ParsePrefilter(std::string_view text, const std::string& field);
 [[nodiscard]] std::string_view ToString(Prefilter prefilter);
 
@@ -47,6 +48,7 @@ struct MapSettings {
     Prefilter prefilter = Prefilter::kNone;
     mapper::ShadowFilterConfig shadow;   // used when prefilter == kShadow
     mapper::RangeJumpConfig range_jump;  // used when prefilter == kRangeJump
+    mapper::SweepJumpConfig sweep_jump;  // used when prefilter == kSweepJump
     mapper::KalmanNoiseConfig kalman;    // used when mode == kKalman
     /// Throws InputError naming the field (a, delta_l_m, shadow.<f>, range_jump.<f>,
     /// kalman.<f>).
@@ -82,9 +84,17 @@ struct MappedRun {
 /// scans), or the LMS 200's 1/75 s with fewer than two scans.
 [[nodiscard]] double ScanPeriod(const std::vector<core::Scan>& scans);
 
-/// Per-beam keep labels of `scan` for `settings.prefilter` (empty for kNone: keep all).
+/// Per-beam keep labels of `scan` for `settings.prefilter` (empty for kNone: keep all). The
+/// sweep_jump pre-filter needs the neighbouring scans: use PrefilterRunLabels (InputError here).
 [[nodiscard]] std::vector<std::uint8_t> PrefilterLabels(const core::Scan& scan,
                                                         const MapSettings& settings);
+
+/// Keep labels of every scan of a run for `settings.prefilter`, in scan order (empty vectors
+/// for kNone); the only form for kSweepJump, which compares each scan with its neighbours.
+[[nodiscard]] std::vector<std::vector<std::uint8_t>> PrefilterRunLabels(
+    const std::vector<core::Scan>& scans,
+    const core::Trajectory& world_T_sensor,
+    const MapSettings& settings);
 
 /// Runs the mapper of `settings.mode` (Eq. 1-6 or Kalman) over every scan with the pose at
 /// each beam's time, each scan first through `settings.prefilter`. Validates `settings`.

@@ -38,19 +38,23 @@ void CheckStageAxis(const SweepOptions& opt, const std::string& name) {
     const PipelineSpec& spec = FindPipeline(opt.filter, "filter");
     const bool shadow = name.starts_with("shadow.");
     const bool jump = name.starts_with("range_jump.");
-    const bool used = shadow ? spec.prefilter == Prefilter::kShadow
-                      : jump ? spec.prefilter == Prefilter::kRangeJump
-                             : spec.mode == MapperMode::kKalman;
+    const bool sweep = name.starts_with("sweep_jump.");
+    const bool used = shadow  ? spec.prefilter == Prefilter::kShadow
+                      : jump  ? spec.prefilter == Prefilter::kRangeJump
+                      : sweep ? spec.prefilter == Prefilter::kSweepJump
+                              : spec.mode == MapperMode::kKalman;
     if (!used) {
         throw MakeInputError("", "axes", name,
                              "the filter " + opt.filter + " does not run the " +
-                                 (shadow ? "shadow pre-filter"
-                                  : jump ? "range_jump pre-filter"
-                                         : "Kalman mapper") +
+                                 (shadow  ? "shadow pre-filter"
+                                  : jump  ? "range_jump pre-filter"
+                                  : sweep ? "sweep_jump pre-filter"
+                                          : "Kalman mapper") +
                                  " (sweep a pipeline that does, e.g. " +
-                                 (shadow ? "shadow_cas"
-                                  : jump ? "range_jump_cas"
-                                         : "kalman_median") +
+                                 (shadow  ? "shadow_cas"
+                                  : jump  ? "range_jump_cas"
+                                  : sweep ? "sweep_jump_hybrid"
+                                          : "kalman_median") +
                                  ")");
     }
 }
@@ -199,6 +203,7 @@ const std::vector<std::string>& SweepableParameters() {
         // mapping stages: only with a pipeline that runs them (--filter shadow_cas, ...)
         "shadow.min_angle_deg", "shadow.max_angle_deg", "shadow.window", "shadow.neighbors",
         "range_jump.jump_min_m", "range_jump.margin_m", "range_jump.chord_tol_m",
+        "sweep_jump.jump_min_m", "sweep_jump.margin_m", "sweep_jump.max_angle_deg",
         "kalman.range_sigma_m", "kalman.beam_constant_m", "kalman.beam_angle_rad",
         "kalman.min_variance_m2", "kalman.mahalanobis_gate", "kalman.multi_height_noise_m2"};
     return names;

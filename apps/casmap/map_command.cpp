@@ -1,6 +1,6 @@
 // casmap map RUN.h5 [--out DIR] [--grid X0,Y0,CELL_M,ROWS,COLS] [--mapper paper|kalman]
-//                  [--unknown zero|nan] [--prefilter none|shadow|range_jump]
-//                  [--set shadow.<f>=V | range_jump.<f>=V | kalman.<f>=V ...]
+//                  [--unknown zero|nan] [--prefilter none|shadow|range_jump|sweep_jump]
+//                  [--set shadow.<f>=V | range_jump.<f>=V | sweep_jump.<f>=V | kalman.<f>=V ...]
 // Builds the elevation and certainty maps (Eq. 1-6, or the Kalman mapper) of a run file,
 // simulated or recorded (the truth labels are never read), and writes them as float TIFF +
 // colour PNG into DIR and as /maps/elevation_m and /maps/certainty into the run file: flags ->
@@ -74,10 +74,10 @@ void AddMapCommand(CLI::App& app, CommonOptions& common) {
                     "never-observed cells: zero (the paper) | nan (grid_map convention)")
         ->capture_default_str();
     sub->add_option("--prefilter", opt->prefilter,
-                    "scan pre-filter before mapping: none | shadow | range_jump")
+                    "scan pre-filter before mapping: none | shadow | range_jump | sweep_jump")
         ->capture_default_str();
     sub->add_option("--set", opt->set,
-                    "NAME=VALUE of the pre-filter run (shadow.<field>, range_jump.<field>) or of "
+                    "NAME=VALUE of the pre-filter run (shadow.<field>, range_jump.<field>, sweep_jump.<field>) or of "
                     "the Kalman mapper (kalman.<field>); repeatable (docs/commands/map.md)");
     AddThreadsOption(sub, common);
     sub->callback([opt] { RunMap(*opt); });

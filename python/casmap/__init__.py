@@ -157,7 +157,7 @@ def map_run(run: Run, grid: Optional[Grid] = None, cell_m: float = 0.025, a: int
     """Elevation and certainty maps of a run, as `casmap map` builds them.
 
     mapper "paper" (Eq. 1-6) or "kalman"; unknown "zero" (the paper) or "nan"; prefilter
-    "none", "shadow" or "range_jump" (as `casmap map --mapper/--unknown/--prefilter`).
+    "none", "shadow", "range_jump" or "sweep_jump" (as `casmap map --mapper/--unknown/--prefilter`).
     grid None: the smallest grid of cell_m cells covering every valid beam. Returns
     (elevation, certainty, grid).
     """

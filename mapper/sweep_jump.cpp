@@ -1,0 +1,131 @@
+// The sweep-jump pre-filter (sweep_jump.hpp): each scan's beams as world rays and points, three
+// scans at a time, then the depth, margin and line-of-sight tests beam by beam.
+#include "casmap/mapper/sweep_jump.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include "casmap/core/check.hpp"
+
+namespace casmap::mapper {
+namespace {
+
+// One scan's beams in the world: origin, unit direction, range and whether the beam counts.
+struct WorldBeams {
+    std::vector<Eigen::Vector3d> origin, direction;
+    std::vector<double> range;
+    std::vector<std::uint8_t> valid;
+};
+
+WorldBeams ToWorld(const core::Scan& scan, const core::Trajectory& world_T_sensor) {
+    const std::size_t n = scan.beams.size();
+    WorldBeams w;
+    w.origin.resize(n);
+    w.direction.resize(n);
+    w.range.assign(n, 0.0);
+    w.valid.assign(n, 0);
+    core::Trajectory::Cursor cursor;
+    for (std::size_t i = 0; i < n; ++i) {
+        const core::Beam& beam = scan.beams[i];
+        if (beam.status != core::BeamStatus::kOk || !std::isfinite(beam.range_m) ||
+            beam.range_m <= 0.0F) {
+            continue;
+        }
+        const std::optional<core::Pose> pose = world_T_sensor.PoseAt(scan.BeamTime(i), cursor);
+        if (!pose) {
+            continue;
+        }
+        const double angle = scan.BeamAngle(i);
+        w.origin[i] = pose->translation;
+        w.direction[i] = pose->rotation * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0.0);
+        w.range[i] = beam.range_m;
+        w.valid[i] = 1;
+    }
+    return w;
+}
+
+bool SameGeometry(const core::Scan& a, const core::Scan& b) {
+    return a.beams.size() == b.beams.size() && a.start_angle_rad == b.start_angle_rad &&
+           a.angle_step_rad == b.angle_step_rad;
+}
+
+// Labels of the middle scan `cur` from its neighbours (either may be null: keep all).
+std::vector<std::uint8_t> Labels(const WorldBeams* before,
+                                 const WorldBeams& cur,
+                                 const WorldBeams* after,
+                                 const SweepJumpConfig& config) {
+    std::vector<std::uint8_t> keep(cur.valid.size(), 1);
+    if (before == nullptr || after == nullptr) {
+        return keep;
+    }
+    const double cos_max = std::cos(config.max_angle_deg * std::numbers::pi / 180.0);
+    for (std::size_t i = 0; i < keep.size(); ++i) {
+        if (!cur.valid[i] || !before->valid[i] || !after->valid[i]) {
+            continue;
+        }
+        const Eigen::Vector3d& o = cur.origin[i];
+        const Eigen::Vector3d& d = cur.direction[i];
+        const Eigen::Vector3d p0 = before->origin[i] + before->range[i] * before->direction[i];
+        const Eigen::Vector3d p1 = after->origin[i] + after->range[i] * after->direction[i];
+        const double depth0 = (p0 - o).dot(d);
+        const double depth1 = (p1 - o).dot(d);
+        const double near = std::min(depth0, depth1);
+        const double far = std::max(depth0, depth1);
+        const double r = cur.range[i];
+        if (!(far - near > config.jump_min_m && r > near + config.margin_m &&
+              r < far - config.margin_m)) {
+            continue;
+        }
+        const Eigen::Vector3d chord = p1 - p0;
+        const double length = chord.norm();
+        if (length > 0.0 && std::abs(chord.dot(d)) >= cos_max * length) {
+            keep[i] = 0;
+        }
+    }
+    return keep;
+}
+
+}  // namespace
+
+void SweepJumpConfig::Validate() const {
+    const core::Check check("scan filter");
+    check.That(std::isfinite(jump_min_m) && jump_min_m > 0.0, "sweep_jump.jump_min_m", jump_min_m,
+               "allowed: > 0");
+    check.That(std::isfinite(margin_m) && margin_m >= 0.0 && 2.0 * margin_m <= jump_min_m,
+               "sweep_jump.margin_m", margin_m, "allowed: >= 0 and <= jump_min_m / 2");
+    check.That(std::isfinite(max_angle_deg) && max_angle_deg > 0.0 && max_angle_deg < 90.0,
+               "sweep_jump.max_angle_deg", max_angle_deg, "allowed: > 0 and < 90");
+}
+
+std::vector<std::vector<std::uint8_t>> SweepJumpLabels(std::span<const core::Scan> scans,
+                                                       const core::Trajectory& world_T_sensor,
+                                                       const SweepJumpConfig& config) {
+    config.Validate();
+    std::vector<std::vector<std::uint8_t>> labels(scans.size());
+    if (scans.empty()) {
+        return labels;
+    }
+    // A window of three scans' world beams, each computed once.
+    std::optional<WorldBeams> before;
+    WorldBeams cur = ToWorld(scans[0], world_T_sensor);
+    for (std::size_t k = 0; k < scans.size(); ++k) {
+        std::optional<WorldBeams> after;
+        if (k + 1 < scans.size()) {
+            after = ToWorld(scans[k + 1], world_T_sensor);
+        }
+        const bool use_before = before && SameGeometry(scans[k - 1], scans[k]);
+        const bool use_after = after && SameGeometry(scans[k + 1], scans[k]);
+        labels[k] =
+            Labels(use_before ? &*before : nullptr, cur, use_after ? &*after : nullptr, config);
+        if (after) {
+            before = std::move(cur);
+            cur = std::move(*after);
+        }
+    }
+    return labels;
+}
+
+}  // namespace casmap::mapper

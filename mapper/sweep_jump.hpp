@@ -1,0 +1,45 @@
+#pragma once
+
+// The sweep-jump pre-filter: a mixed-pixel test across consecutive scans (issue 10 section 4).
+//
+// A pulse that straddles an edge parallel to the scan line (a box's far edge seen from the
+// front, which every beam of a scan crosses at about the same time) returns a range between
+// the edge and the surface behind it. Its two neighbours in the scan straddle the same edge, so
+// the in-scan tests (shadow, range_jump) cannot see it; its neighbours in time can. Beam i of
+// scan k is compared with beam i of scans k-1 and k+1, as world points through the poses:
+// with o and d the origin and direction of beam i of scan k and p-, p+ the neighbours' points,
+// the beam is rejected when
+//   1. its neighbours lie at depths (p -/+ - o) . d that differ by more than jump_min_m,
+//   2. its own range lies between those depths, more than margin_m from both, and
+//   3. the chord p- p+ runs within max_angle_deg of its line of sight (the veiling geometry of
+//      ROS laser_filters' ScanShadowsFilter, taken across scans): the three points lie on one
+//      line of sight, so the middle one is in mid-air between a near and a far surface.
+// Test 3 keeps a floor seen by a rolling scanner: its consecutive points also change depth
+// fast, but along the floor, far from the line of sight. docs/paper-notes.md "Sweep jump".
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "casmap/core/scan.hpp"
+#include "casmap/core/trajectory.hpp"
+
+namespace casmap::mapper {
+
+struct SweepJumpConfig {
+    double jump_min_m = 0.1;      // smallest depth gap between the neighbours (a depth edge)
+    double margin_m = 0.05;       // distance from both neighbours' depths (> LMS 200 noise)
+    double max_angle_deg = 10.0;  // chord within this angle of the line of sight
+    void Validate() const;        // throws InputError naming the field ("sweep_jump.<field>")
+};
+
+/// Keep labels (1 keep, 0 reject) for every beam of every scan of a run, in scan order. Beams
+/// with status != kOk, without a pose at their time, and the first and last scan's beams are
+/// kept; a neighbour scan with another beam count, start angle or angle step counts as
+/// missing. Deterministic: each label depends only on the three scans and the trajectory.
+[[nodiscard]] std::vector<std::vector<std::uint8_t>> SweepJumpLabels(
+    std::span<const core::Scan> scans,
+    const core::Trajectory& world_T_sensor,
+    const SweepJumpConfig& config);
+
+}  // namespace casmap::mapper
