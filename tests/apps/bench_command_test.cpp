@@ -129,6 +129,8 @@ TEST(BenchCommand, BadInputExitsTwoWithOneLineAndNoJson) {
         {"bench --pipelines cas,bogus" + json, "--pipelines"},
         {"bench --set shadow.min_angle_deg=95" + json, "shadow.min_angle_deg = 95"},
         {"bench --set range_jump.jump_min_m=0.04" + json, "range_jump.margin_m"},
+        {"bench --set sweep_jump.max_angle_deg=-1" + json, "sweep_jump.max_angle_deg = -1"},
+        {"sweep --courses 4 --set sweep_jump.margin_m=0.01:0.03:0.01", "does not run the sweep_jump"},
         {"sweep --courses 4 --set shadow.min_angle_deg=5:25:10", "does not run the shadow"},
         {"sweep --courses 4 --filter kalman_median --set kalman.mahalanobis_gate=0:1:1",
          "kalman.mahalanobis_gate"},

@@ -225,6 +225,12 @@ TEST(MapCommand, UnknownNanKalmanAndPrefilterModes) {
               std::string::npos);
     r = Casmap("map " + run + " --prefilter shadow --out " + (dir / "shadow").string());
     ASSERT_EQ(r.code, 0) << r.output;
+    r = Casmap("map " + run + " --prefilter sweep_jump --set sweep_jump.max_angle_deg=5 --out " +
+               (dir / "sweep").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string sweep_yaml = test::ReadText(dir / "sweep" / "map.yaml");
+    EXPECT_NE(sweep_yaml.find("prefilter: sweep_jump"), std::string::npos) << sweep_yaml;
+    EXPECT_NE(sweep_yaml.find("max_angle_deg: 5"), std::string::npos) << sweep_yaml;
     EXPECT_NE(test::ReadText(dir / "shadow" / "map.yaml").find("prefilter: shadow"),
               std::string::npos);
 }
@@ -253,6 +259,10 @@ TEST(MapCommand, BadModeFlagsExitTwoNamingTheFlag) {
              {"--prefilter shadow --set shadow.min_angle_deg=95",
               "--set: shadow.min_angle_deg = 95"},
              {"--prefilter range_jump --set range_jump.jump_min_m=0.04", "range_jump.margin_m"},
+             {"--prefilter sweep_jump --set sweep_jump.jump_min_m=0.06", "sweep_jump.margin_m"},
+             {"--prefilter sweep_jump --set sweep_jump.max_angle_deg=90",
+              "sweep_jump.max_angle_deg = 90"},
+             {"--set sweep_jump.margin_m=0.01", "the pre-filter is none"},
              {"--mapper kalman --set kalman.min_variance_m2=0", "kalman.min_variance_m2"},
              {"--prefilter shadow --set shadow.window", "NAME=VALUE"}}) {
         const Result r = Casmap("map " + run + " " + c.args);

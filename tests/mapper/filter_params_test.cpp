@@ -60,8 +60,14 @@ TEST(FilterParams, SetsEveryNamedParameter) {
     EXPECT_EQ(p.cas.speed_m_s, 0.5);
     EXPECT_EQ(p.cas.edge_min, 9);
     EXPECT_EQ(p.cas.edge_tol_m, 0.04);
+    p.Set("sweep_jump.jump_min_m", "0.2");
+    p.Set("sweep_jump.margin_m", "0.1");
+    p.Set("sweep_jump.max_angle_deg", "7.5");
+    EXPECT_EQ(p.sweep_jump.jump_min_m, 0.2);
+    EXPECT_EQ(p.sweep_jump.margin_m, 0.1);
+    EXPECT_EQ(p.sweep_jump.max_angle_deg, 7.5);
     EXPECT_NO_THROW(p.Validate());
-    EXPECT_EQ(FilterParams::Names().size(), 46U);  // 32 filter + 14 mapping-stage names
+    EXPECT_EQ(FilterParams::Names().size(), 49U);  // 32 filter + 17 mapping-stage names
 }
 
 TEST(FilterParams, SetsTheWaveTwoOptions) {

@@ -35,7 +35,11 @@ TEST(BenchPipelines, RegistryNamesAreStableAndThePaperFiveComeFirst) {
                                                "range_jump",
                                                "range_jump_cas",
                                                "range_jump_cas_terrain",
-                                               "range_jump_median"};
+                                               "range_jump_median",
+                                               "sweep_jump",
+                                               "sweep_jump_cas",
+                                               "sweep_jump_median",
+                                               "sweep_jump_hybrid"};
     EXPECT_EQ(AllPipelineNames(), expected);
     EXPECT_EQ(PaperPipelineNames(),
               (std::vector<std::string>{"cas", "wiener", "average", "median", "cwm"}));
@@ -51,9 +55,30 @@ TEST(BenchPipelines, RegistryNamesAreStableAndThePaperFiveComeFirst) {
     EXPECT_EQ(*FindPipeline("range_jump_cas_terrain", "f").filter,
               mapper::FilterMethod::kCasTerrain);
     EXPECT_EQ(*FindPipeline("kalman_median", "f").filter, mapper::FilterMethod::kMedian);
+    EXPECT_EQ(FindPipeline("sweep_jump_hybrid", "f").prefilter, Prefilter::kSweepJump);
+    EXPECT_EQ(*FindPipeline("sweep_jump_hybrid", "f").filter, mapper::FilterMethod::kCasHybrid);
     for (const PipelineSpec& p : AllPipelines()) {
         EXPECT_FALSE(p.description.empty()) << p.name;
     }
+}
+
+// sweep_jump compares each scan with its neighbours: only whole runs can be labelled.
+TEST(BenchPipelines, SweepJumpLabelsWholeRunsOnly) {
+    MapSettings settings;
+    settings.prefilter = ParsePrefilter("sweep_jump", "--prefilter");
+    EXPECT_EQ(ToString(settings.prefilter), "sweep_jump");
+    core::Scan scan;
+    scan.beams.assign(3, core::Beam{1.0F, core::BeamStatus::kOk, 0});
+    EXPECT_THROW((void)PrefilterLabels(scan, settings), InputError);
+    const std::vector<core::Scan> scans(4, scan);
+    const auto labels = PrefilterRunLabels(scans, core::Trajectory{}, settings);
+    ASSERT_EQ(labels.size(), 4U);
+    for (const auto& keep : labels) {
+        EXPECT_EQ(keep, (std::vector<std::uint8_t>{1, 1, 1}));  // no poses: nothing judged
+    }
+    settings.prefilter = Prefilter::kRangeJump;
+    EXPECT_EQ(PrefilterRunLabels(scans, core::Trajectory{}, settings)[2],
+              PrefilterLabels(scan, settings));
 }
 
 TEST(BenchPipelines, ParseListsAllAndRejectsUnknownNames) {

@@ -148,6 +148,7 @@ TEST(RunBench, EveryPipelineReportsEveryFieldAndThePaperFiveAreUnchanged) {
     EXPECT_EQ(run.filters.at("raw").pi, 1.0);  // Eq. 11's denominator is the raw map
     EXPECT_NE(run.filters.at("kalman").rmse_m, run.filters.at("raw").rmse_m);
     EXPECT_NE(run.filters.at("range_jump").rmse_m, run.filters.at("raw").rmse_m);
+    EXPECT_LT(run.filters.at("sweep_jump").pi, 1.0);  // fewer mixed pixels than the raw map
     EXPECT_NE(run.filters.at("shadow").rmse_m, run.filters.at("raw").rmse_m);
     for (const std::string& name : PaperPipelineNames()) {
         const FilterScore& a = paper.runs[0].filters.at(name);
