@@ -77,6 +77,11 @@ def test_map_run_and_mapper_equal_casmap_map(exe, cli_run, tmp_path):
     assert np.array_equal(kh, casmap.read_map_tiff(tmp_path / "kalman" / "elevation.tiff"),
                           equal_nan=True)
     assert np.isnan(kh[kc == 0]).all()
+    # The sweep-jump pre-filter needs whole runs: map_run gives what `casmap map` gives.
+    run_cli(exe, "map", cli_run, "--out", tmp_path / "sweep", "--prefilter", "sweep_jump")
+    sh, sc, _ = casmap.map_run(run, grid=run.maps.grid, prefilter="sweep_jump")
+    assert np.array_equal(sh, casmap.read_map_tiff(tmp_path / "sweep" / "elevation.tiff"))
+    assert sc.sum() <= c.sum()  # rejected beams are not mapped
 
 
 @needs_sim

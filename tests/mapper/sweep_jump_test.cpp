@@ -21,8 +21,8 @@ constexpr double kScanPeriodS = 1.0 / 75.0;
 constexpr double kSpeedMS = 1.0;
 constexpr double kHeightM = 1.0;
 constexpr double kPitchRad = 40.0 * kDeg;
-constexpr double kBoxTopM = 0.46;   // box top height
-constexpr double kBoxEndXM = 2.0;   // the box top spans x < 2.0 m (every y); floor z = 0 beyond
+constexpr double kBoxTopM = 0.46;  // box top height
+constexpr double kBoxEndXM = 2.0;  // the box top spans x < 2.0 m (every y); floor z = 0 beyond
 constexpr int kBeams = 181;
 
 core::Pose PoseAt(int k, double roll_per_scan_rad) {
