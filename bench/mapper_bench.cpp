@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "casmap/mapper/filters.hpp"
+#include "casmap/mapper/sweep_jump.hpp"
 #include "casmap/mapper/synthetic_map.hpp"
 #include "casmap/mapper/terrain_mapper.hpp"
 
@@ -79,6 +80,24 @@ void BM_MapperIngest(benchmark::State& state) {
         static_cast<double>(beams), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_MapperIngest)->Arg(6)->Arg(60)->Unit(benchmark::kMillisecond);
+
+// The sweep-jump pre-filter's labels for the same runs (every beam to world coordinates once,
+// then three scans compared): its cost per beam beside the mapper's.
+void BM_SweepJumpLabels(benchmark::State& state) {
+    const auto seconds = static_cast<int>(state.range(0));
+    const core::Trajectory trajectory = TableTrajectory(seconds);
+    const std::vector<core::Scan> scans = TableScans(75 * seconds - 5);
+    std::int64_t beams = 0;
+    for (auto _ : state) {
+        const auto labels = mapper::SweepJumpLabels(scans, trajectory, {});
+        benchmark::DoNotOptimize(labels.data());
+        beams += static_cast<std::int64_t>(scans.size() * scans[0].beams.size());
+    }
+    state.SetItemsProcessed(beams);
+    state.counters["time_per_beam"] = benchmark::Counter(
+        static_cast<double>(beams), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_SweepJumpLabels)->Arg(6)->Arg(60)->Unit(benchmark::kMillisecond);
 
 const mapper::SyntheticMap& Map() {
     static const mapper::SyntheticMap map = mapper::BuildSyntheticMap({});
