@@ -195,7 +195,10 @@ FilterResult EdgeFilter(const core::MapF& elevation,
                                             tol,
                                             static_cast<float>(cas.EffectiveA()),
                                             static_cast<float>(cas.edge_fill),
-                                            cas.edge_fill_run};
+                                            cas.edge_fill_run,
+                                            static_cast<float>(cas.edge_spill_c),
+                                            static_cast<float>(cas.edge_spill_drop_m),
+                                            static_cast<float>(cas.edge_spill)};
         detail::FillShadowEdges(elevation, certainty, fill, out.elevation);  // cas_surface.hpp
     }
     // Known cells only (the fill above writes never-observed ones); unknown = nan only.

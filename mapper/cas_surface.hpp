@@ -25,7 +25,7 @@ namespace casmap::mapper::detail {
                                                  std::vector<float>& samples);
 
 /// FillShadowEdges' parameters (from CasParams: k, edge_tol_m, edge_min, support_tol_m,
-/// EffectiveA(), edge_fill, edge_fill_run).
+/// EffectiveA(), edge_fill, edge_fill_run, edge_spill_c, edge_spill_drop_m, edge_spill).
 struct ShadowEdgeParams {
     int k = 2;                    // window half-width of the surface test
     float edge_tol = 0.06F;       // "same height" of the surface test
@@ -34,6 +34,9 @@ struct ShadowEdgeParams {
     float max_certainty = 25.0F;  // the neighbour was seen at most this often (A)
     float fill = 0.0F;            // share of the step the cell takes (0: off)
     int along_min = 0;  // surface cells at the neighbour's height beside it along the edge
+    float spill_max_certainty = 0.0F;  // a spill is seen at most this often (0: no spills)
+    float spill_drop = 0.01F;          // ... and lies this far below its surface's median
+    float spill = 0.0F;                // share of the step down a spill keeps
 };
 
 /// cas_hybrid's edge_fill (docs/paper-notes.md "cas_hybrid"): every cell that is not known
@@ -43,9 +46,16 @@ struct ShadowEdgeParams {
 /// on the opposite side is not known either (or outside the map), and with at least along_min
 /// of its two neighbours along the edge (across the step) surfaces within edge_tol of its
 /// output, takes out + fill (top - out)
-/// where top is the highest such neighbour's out and top - out > step_min. Reads known cells and
-/// the cell itself only, writes unknown cells only: the result does not depend on the visiting
-/// order.
+/// where top is the highest such neighbour's out and top - out > step_min.
+/// With spill_max_certainty > 0, first the spills (docs/paper-notes.md "cas_hybrid"): a
+/// surface cell s (as above) with c(s) <= spill_max_certainty, a known 4-neighbour p on one side
+/// whose out is within edge_tol of out(s), the cells f and g beyond s on the other side (s + (s -
+/// p), s + 2 (s - p)) both not known (g may lie outside the map, f not), out(s) - out(f) >
+/// step_min, and elevation(s) <= m - spill_drop, m the lower median of the known cells of p's
+/// (2k+1)^2 window within edge_tol of elevation(p) (detail::SurfaceMedian): s takes out(f) + spill
+/// (out(s) - out(f)) (sides tried in the order +row, -row, +col, -col; the first that qualifies),
+/// and no unknown cell takes edge_fill from s. Every decision and value reads the input out (before
+/// any write): the result does not depend on the visiting order.
 void FillShadowEdges(const core::MapF& elevation,
                      const core::MapF& certainty,
                      const ShadowEdgeParams& params,

@@ -156,6 +156,13 @@ const std::map<std::string, Setter, std::less<>>& Setters() {
          [](FilterParams& p, auto n, auto v) { p.cas.edge_fill = ParseRange(n, v, 0, 1, false); }},
         {"edge_fill_run",
          [](FilterParams& p, auto n, auto v) { p.cas.edge_fill_run = ParseInt(n, v, 0, 2); }},
+        {"edge_spill_c", [](FilterParams& p, auto n,
+                            auto v) { p.cas.edge_spill_c = ParseRange(n, v, 0, 1e6, false); }},
+        {"edge_spill_drop_m", [](FilterParams& p, auto n, auto v) {
+             p.cas.edge_spill_drop_m = ParseRange(n, v, 0, 1, false);
+         }},
+        {"edge_spill",
+         [](FilterParams& p, auto n, auto v) { p.cas.edge_spill = ParseRange(n, v, 0, 1, false); }},
         {"window",
          [](FilterParams& p, auto n, auto v) {
              const int w = ParseInt(n, v, 3, 15);
@@ -376,6 +383,12 @@ void FilterParams::Validate() const {
                "allowed: 0..1");
     check.That(cas.edge_fill_run >= 0 && cas.edge_fill_run <= 2, "edge_fill_run", cas.edge_fill_run,
                "allowed: integer 0..2");
+    check.That(cas.edge_spill_c >= 0 && cas.edge_spill_c <= 1e6, "edge_spill_c", cas.edge_spill_c,
+               "allowed: 0..1e6");
+    check.That(cas.edge_spill_drop_m >= 0 && cas.edge_spill_drop_m <= 1, "edge_spill_drop_m",
+               cas.edge_spill_drop_m, "allowed: 0..1");
+    check.That(cas.edge_spill >= 0 && cas.edge_spill <= 1, "edge_spill", cas.edge_spill,
+               "allowed: 0..1");
     check.That(baseline.window >= 3 && baseline.window <= 15 && baseline.window % 2 == 1, "window",
                baseline.window, "allowed: odd integer 3..15");
     check.That(!baseline.noise || (*baseline.noise >= 0 && std::isfinite(*baseline.noise)), "noise",

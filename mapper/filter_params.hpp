@@ -97,6 +97,14 @@ struct CasParams {
     // ... and only beside a surface cell with at least edge_fill_run of its two neighbours
     // along the edge at its height (0: any; 1: the edge continues on one side at least).
     int edge_fill_run = 0;
+    // cas_hybrid only: a box top's one-hit spill onto the floor beyond its far edge (0: off;
+    // docs/paper-notes.md "cas_hybrid", "Spills"): a surface cell seen at most edge_spill_c times
+    // whose far 4-neighbour and the cell beyond it are never observed, and whose measured height
+    // lies at least edge_spill_drop_m below the median of the surface it continues, takes
+    // edge_spill of the step down to the shadow's value, and no edge_fill grows from it.
+    double edge_spill_c = 0.0;
+    double edge_spill_drop_m = 0.01;
+    double edge_spill = 0.0;
 
     /// Eq. 8: A = a * (round(s / (v dt)) + 2), or the given A.
     [[nodiscard]] double EffectiveA() const;
