@@ -136,8 +136,9 @@ TEST_F(FilterCommand, PresetAppliesThePipelinesSectionOfTheMethod) {
     ASSERT_EQ(Casmap("filter --method cas_hybrid " + maps +
                      " --set A=25 --set h_sum_min=9 --set support_min=5 --set support_tol_m=0.13"
                      " --set edge_min=9 --set edge_tol_m=0.1 --set surface_tol_m=0.015"
-                     " --set surface_min=7 --set surface_prior=0.75 --set median_mix=0.1875"
-                     " --set edge_fill=0.5 --set edge_fill_run=1 --out " +
+                     " --set surface_min=7 --set surface_prior=0.75 --set median_mix=0.125"
+                     " --set edge_fill=0.5 --set edge_fill_run=1 --set edge_spill_c=9"
+                     " --set edge_spill_drop_m=0.01 --set edge_spill=0.5 --out " +
                      P("set.tiff"))
                   .code,
               0);
