@@ -66,8 +66,14 @@ TEST(FilterParams, SetsEveryNamedParameter) {
     EXPECT_EQ(p.sweep_jump.jump_min_m, 0.2);
     EXPECT_EQ(p.sweep_jump.margin_m, 0.1);
     EXPECT_EQ(p.sweep_jump.max_angle_deg, 7.5);
+    p.Set("edge_spill_c", "6");
+    p.Set("edge_spill_drop_m", "0.02");
+    p.Set("edge_spill", "0.25");
+    EXPECT_EQ(p.cas.edge_spill_c, 6.0);
+    EXPECT_EQ(p.cas.edge_spill_drop_m, 0.02);
+    EXPECT_EQ(p.cas.edge_spill, 0.25);
     EXPECT_NO_THROW(p.Validate());
-    EXPECT_EQ(FilterParams::Names().size(), 49U);  // 32 filter + 17 mapping-stage names
+    EXPECT_EQ(FilterParams::Names().size(), 52U);  // 35 filter + 17 mapping-stage names
 }
 
 TEST(FilterParams, SetsTheWaveTwoOptions) {
