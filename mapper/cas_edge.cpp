@@ -36,7 +36,8 @@
 //   - the value of every non-object cell is B = M + median_mix (R - M), R the median of the
 //     raw map (where both are known; M elsewhere): M lets CAS's fills vote (right on box tops
 //     next to a shadow, wrong on the floor beyond a box edge), R lets never-observed cells
-//     vote the floor (the reverse); each is wrong where the other is right;
+//     vote the floor (the reverse); each is wrong where the other is right; with unknown = nan
+//     nan_median_mix replaces median_mix when set (docs/paper-notes.md "Median mix on terrain");
 //   - a surface cell takes B + w (h - B), w = c / (c + surface_prior): its measured height
 //     in proportion to its evidence. A surface cell seen once (c = a = 3) is as often a box
 //     edge (h right) as a box top smeared one cell onto the floor (B right) on the training
@@ -81,9 +82,9 @@ FilterResult EdgeFilter(const core::MapF& elevation,
     std::vector<float> samples;
     // B: the value of non-object cells (M for cas_edge).
     core::MapF base = median;
-    if (hybrid && cas.median_mix > 0.0) {
+    if (hybrid && cas.EffectiveMedianMix() > 0.0) {  // nan_median_mix with unknown = nan
         const core::MapF raw_median = MedianFilter(elevation, params.baseline);
-        const auto mix = static_cast<float>(cas.median_mix);
+        const auto mix = static_cast<float>(cas.EffectiveMedianMix());
         for (std::size_t n = 0; n < base.data.size(); ++n) {
             const float r = raw_median.data[n];
             if (!std::isnan(base.data[n]) && !std::isnan(r)) {

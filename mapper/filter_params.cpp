@@ -152,6 +152,14 @@ const std::map<std::string, Setter, std::less<>>& Setters() {
                              auto v) { p.cas.surface_prior = ParseRange(n, v, 0, 1e6, false); }},
         {"median_mix",
          [](FilterParams& p, auto n, auto v) { p.cas.median_mix = ParseRange(n, v, 0, 1, false); }},
+        {"nan_median_mix",
+         [](FilterParams& p, auto n, auto v) {
+             const double x = ParseRange(n, v, -1, 1, false);
+             if (x < 0.0 && x != -1.0) {
+                 Reject(n, v, "allowed: -1 (as median_mix) or 0..1");
+             }
+             p.cas.nan_median_mix = x;
+         }},
         {"edge_fill",
          [](FilterParams& p, auto n, auto v) { p.cas.edge_fill = ParseRange(n, v, 0, 1, false); }},
         {"edge_fill_run",
@@ -379,6 +387,8 @@ void FilterParams::Validate() const {
                cas.surface_prior, "allowed: 0..1e6");
     check.That(cas.median_mix >= 0 && cas.median_mix <= 1, "median_mix", cas.median_mix,
                "allowed: 0..1");
+    check.That(cas.nan_median_mix == -1.0 || (cas.nan_median_mix >= 0 && cas.nan_median_mix <= 1),
+               "nan_median_mix", cas.nan_median_mix, "allowed: -1 (as median_mix) or 0..1");
     check.That(cas.edge_fill >= 0 && cas.edge_fill <= 1, "edge_fill", cas.edge_fill,
                "allowed: 0..1");
     check.That(cas.edge_fill_run >= 0 && cas.edge_fill_run <= 2, "edge_fill_run", cas.edge_fill_run,

@@ -91,6 +91,13 @@ struct CasParams {
     // cas_edge); B = M + median_mix (median of the raw map - M) on non-object cells (0: M).
     double surface_prior = 0.0;
     double median_mix = 0.0;
+    // cas_hybrid with unknown = nan only: median_mix's value there (< 0: median_mix itself). On
+    // terrain a removed cell votes with the local ground in M, which the raw map's median R
+    // does not need (docs/paper-notes.md "Median mix on terrain"); the paper's mode never reads it.
+    double nan_median_mix = -1.0;
+    [[nodiscard]] double EffectiveMedianMix() const {
+        return unknown == Unknown::kNaN && nan_median_mix >= 0.0 ? nan_median_mix : median_mix;
+    }
     // cas_hybrid only: a never-observed cell in the shadow beside a surface (box top) takes
     // edge_fill of the step up to it (0: off; docs/paper-notes.md "cas_hybrid").
     double edge_fill = 0.0;

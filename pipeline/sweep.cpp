@@ -199,8 +199,8 @@ const std::vector<std::string>& SweepableParameters() {
     static const std::vector<std::string> names = {
         "A", "G", "B", "h_sum_min", "a", "E", "k", "speed", "support_tol_m", "support_min",
         "ground_k", "ground_quantile", "edge_min", "edge_tol_m", "surface_tol_m", "surface_min",
-        "surface_prior", "median_mix", "edge_fill", "edge_fill_run", "edge_spill_c",
-        "edge_spill_drop_m", "edge_spill",
+        "surface_prior", "median_mix", "nan_median_mix", "edge_fill", "edge_fill_run",
+        "edge_spill_c", "edge_spill_drop_m", "edge_spill",
         // mapping stages: only with a pipeline that runs them (--filter shadow_cas, ...)
         "shadow.min_angle_deg", "shadow.max_angle_deg", "shadow.window", "shadow.neighbors",
         "range_jump.jump_min_m", "range_jump.margin_m", "range_jump.chord_tol_m",

@@ -72,8 +72,10 @@ TEST(FilterParams, SetsEveryNamedParameter) {
     EXPECT_EQ(p.cas.edge_spill_c, 6.0);
     EXPECT_EQ(p.cas.edge_spill_drop_m, 0.02);
     EXPECT_EQ(p.cas.edge_spill, 0.25);
+    p.Set("nan_median_mix", "0.5");
+    EXPECT_EQ(p.cas.nan_median_mix, 0.5);
     EXPECT_NO_THROW(p.Validate());
-    EXPECT_EQ(FilterParams::Names().size(), 52U);  // 35 filter + 17 mapping-stage names
+    EXPECT_EQ(FilterParams::Names().size(), 53U);  // 36 filter + 17 mapping-stage names
 }
 
 TEST(FilterParams, SetsTheWaveTwoOptions) {
