@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <set>
+#include <span>
 #include <utility>
 
 #include "casmap/core/input_error.hpp"
@@ -151,8 +153,70 @@ TEST(SweepJump, KeepsAForegroundReturnAndEveryBeamItCannotJudge) {
     other = run;
     other.scans[2].stamp_s = 99.0;  // after the trajectory's end
     EXPECT_TRUE(Rejected(SweepJumpLabels(other.scans, other.poses, {})).empty());
-    // First and last scans are always kept; an empty run gives no labels.
+    // An empty run gives no labels (first and last scans: the next test).
     EXPECT_TRUE(SweepJumpLabels({}, run.poses, {}).empty());
+}
+
+TEST(SweepJump, JudgesOnlyScansWithTwoNeighboursNeverWrappingAround) {
+    SweepRun run = MakeRun(3, false, 0.0, 1, 0);
+    const auto set = [&run](int beam, float r0, float r1, float r2) {
+        const float floor = run.scans[1].beams[static_cast<std::size_t>(beam)].range_m;
+        for (const auto& [k, r] : {std::pair{0, r0}, std::pair{1, r1}, std::pair{2, r2}}) {
+            run.scans[static_cast<std::size_t>(k)].beams[static_cast<std::size_t>(beam)].range_m =
+                floor + r;
+        }
+    };
+    // Beam 110: a mixed return in the middle scan, rejected (the control).
+    set(110, 0.0F, 0.5F, 1.0F);
+    // Beam 90: the first scan's return lies between the other two scans' (it would be rejected
+    // if scan 0's neighbours wrapped around to the last scan); beam 70: the same for the last.
+    set(90, 0.5F, 0.0F, 1.0F);
+    set(70, 0.0F, 1.0F, 0.5F);
+    EXPECT_EQ(Rejected(SweepJumpLabels(run.scans, run.poses, {})),
+              (std::set<std::pair<int, int>>{{1, 110}}));
+    // One or two scans: nothing to compare, every beam kept, one label per beam.
+    for (const std::size_t count : {1U, 2U}) {
+        const std::span<const core::Scan> part(run.scans.data(), count);
+        const auto keep = SweepJumpLabels(part, run.poses, {});
+        ASSERT_EQ(keep.size(), count);
+        for (const auto& labels : keep) {
+            EXPECT_EQ(labels, std::vector<std::uint8_t>(kBeams, 1));
+        }
+    }
+}
+
+TEST(SweepJump, NeighboursWithoutAFinitePositiveRangeCountAsMissing) {
+    SweepRun run = MakeRun(5, false, 0.0, 1, 0);
+    core::Beam& before = run.scans[1].beams[91];
+    core::Beam& beam = run.scans[2].beams[91];
+    core::Beam& after = run.scans[3].beams[91];
+    const float floor = beam.range_m;
+    // The control: a return halfway between a near and a far neighbour is rejected.
+    beam.range_m = floor + 0.5F;
+    after.range_m = floor + 1.0F;
+    ASSERT_EQ(Rejected(SweepJumpLabels(run.scans, run.poses, {})),
+              (std::set<std::pair<int, int>>{{2, 91}}));
+    // A kOk neighbour at +inf (far at infinity, chord along the line of sight) or NaN: kept.
+    for (const float bad :
+         {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()}) {
+        after.range_m = bad;
+        EXPECT_TRUE(Rejected(SweepJumpLabels(run.scans, run.poses, {})).empty()) << bad;
+    }
+    // A neighbour at range 0 or below would sit at (or behind) the origin, a near depth on the
+    // line of sight itself: kept too.
+    after.range_m = floor;
+    beam.range_m = 0.5F * floor;
+    for (const float bad : {0.0F, -1.0F}) {
+        before.range_m = bad;
+        EXPECT_TRUE(Rejected(SweepJumpLabels(run.scans, run.poses, {})).empty()) << bad;
+    }
+    // The beam itself at +inf or NaN: not between its neighbours, kept.
+    before.range_m = floor;
+    for (const float bad :
+         {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()}) {
+        beam.range_m = bad;
+        EXPECT_TRUE(Rejected(SweepJumpLabels(run.scans, run.poses, {})).empty()) << bad;
+    }
 }
 
 TEST(SweepJump, ValidatesEveryFieldByName) {
