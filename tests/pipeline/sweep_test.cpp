@@ -75,6 +75,8 @@ TEST(SweepOptions, StageAxesNeedAPipelineRunningTheStage) {
              {"cas", "shadow.min_angle_deg"},
              {"range_jump_cas", "shadow.min_angle_deg"},
              {"shadow_cas", "range_jump.jump_min_m"},
+             {"range_jump_cas", "sweep_jump.max_angle_deg"},
+             {"sweep_jump_cas", "range_jump.jump_min_m"},
              {"cas_trail", "kalman.mahalanobis_gate"}}) {
         SweepOptions o;
         o.filter = filter;
@@ -96,6 +98,14 @@ TEST(SweepOptions, StageAxesNeedAPipelineRunningTheStage) {
     EXPECT_NO_THROW(ok.Validate());
     ok.axes = {{"kalman.mahalanobis_gate", {0.0}}};  // out of range: the parameter is named
     EXPECT_NE(ErrorOf([&] { ok.Validate(); }).find("kalman.mahalanobis_gate"), std::string::npos);
+    SweepOptions sweep_jump;
+    sweep_jump.filter = "sweep_jump_hybrid";
+    sweep_jump.courses = {4};
+    sweep_jump.axes = {{"sweep_jump.max_angle_deg", {5.0, 15.0}}};
+    EXPECT_NO_THROW(sweep_jump.Validate());
+    sweep_jump.axes = {{"sweep_jump.max_angle_deg", {90.0}}};
+    EXPECT_NE(ErrorOf([&] { sweep_jump.Validate(); }).find("sweep_jump.max_angle_deg"),
+              std::string::npos);
     EXPECT_EQ(ParseSweepAxis("shadow.window=1:3:1", "f").values,
               (std::vector<double>{1.0, 2.0, 3.0}));
 }
