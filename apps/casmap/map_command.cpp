@@ -77,8 +77,9 @@ void AddMapCommand(CLI::App& app, CommonOptions& common) {
                     "scan pre-filter before mapping: none | shadow | range_jump | sweep_jump")
         ->capture_default_str();
     sub->add_option("--set", opt->set,
-                    "NAME=VALUE of the pre-filter run (shadow.<field>, range_jump.<field>, sweep_jump.<field>) or of "
-                    "the Kalman mapper (kalman.<field>); repeatable (docs/commands/map.md)");
+                    "NAME=VALUE of the pre-filter run (shadow.<field>, range_jump.<field>, "
+                    "sweep_jump.<field>) or of the Kalman mapper (kalman.<field>); repeatable "
+                    "(docs/commands/map.md)");
     AddThreadsOption(sub, common);
     sub->callback([opt] { RunMap(*opt); });
 }
