@@ -405,7 +405,8 @@ void FilterParams::Validate() const {
                baseline.noise.value_or(0.0), "allowed: >= 0");
     check.That(baseline.center_weight >= 1 && baseline.center_weight % 2 == 1, "center_weight",
                baseline.center_weight, "allowed: odd integer >= 1");
-    shadow.Validate();  // InputError naming shadow.<field>, range_jump.<field>, kalman.<field>
+    // InputError naming shadow.<field>, range_jump.<field>, sweep_jump.<field>, kalman.<field>
+    shadow.Validate();
     range_jump.Validate();
     sweep_jump.Validate();
     kalman.Validate();

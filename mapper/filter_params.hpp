@@ -130,9 +130,8 @@ struct BaselineParams {
 /// Every filter parameter, settable by name (NAME=VALUE; `casmap filter --set`, Python
 /// keywords): the map filters' (CAS and its variants, the baselines) and the mapping stages' a
 /// named pipeline may use: the scan pre-filters (shadow.<field>, range_jump.<field>,
-/// sweep_jump.<field>) and the
-/// Kalman mapper mode's noise model (kalman.<field>). A stage's parameters matter only to
-/// pipelines that run the stage.
+/// sweep_jump.<field>) and the Kalman mapper mode's noise model (kalman.<field>). A stage's
+/// parameters matter only to pipelines that run the stage.
 struct FilterParams {
     CasParams cas;
     BaselineParams baseline;

@@ -1,10 +1,10 @@
 #pragma once
 
 // Named pipelines of `casmap bench` (issue 10 section 5): a pipeline is a mapper mode (the
-// paper's Eq. 1-6 or the Kalman mapper), an optional scan pre-filter (shadow | range_jump)
-// and a map filter (raw = none, the paper's five, or the CAS variants). The unknown-cell
-// convention is the run's (0 on the paper's courses, NaN on terrain scenes; --set unknown=).
-// Names are stable: bench.json keys runs[].filters.<name> by them. docs/paper-notes.md
+// paper's Eq. 1-6 or the Kalman mapper), an optional scan pre-filter (shadow | range_jump |
+// sweep_jump) and a map filter (raw = none, the paper's five, or the CAS variants). The
+// unknown-cell convention is the run's (0 on the paper's courses, NaN on terrain scenes; --set
+// unknown=). Names are stable: bench.json keys runs[].filters.<name> by them. docs/paper-notes.md
 // "Named pipelines" defines each.
 
 #include <optional>

@@ -120,7 +120,7 @@ struct MappedBenchRun {
 /// Maps of one run's scans under other mapper modes / scan pre-filters (ScorePipelines makes
 /// them), keyed by everything such a map depends on besides the scans and grid: mapper mode,
 /// pre-filter, a, delta-l, unknown convention and the stage's parameters (shadow.*,
-/// range_jump.*, kalman.*). A caller scoring one run many times (a sweep over filter
+/// range_jump.*, sweep_jump.*, kalman.*). A caller scoring one run many times (a sweep over filter
 /// parameters) keeps one per run so each stage setting is mapped once. Holds at most
 /// `capacity` maps, the oldest made leaving first; one map is about 8 bytes per grid cell
 /// (200 x 80 cells: 128 KB). Not thread-safe: one run, one user at a time.

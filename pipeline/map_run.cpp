@@ -121,8 +121,7 @@ void ApplyStageSettings(MapSettings& settings,
             throw MakeInputError("", field, a,
                                  "not a mapping-stage parameter; allowed: shadow.<field>, "
                                  "range_jump.<field>, sweep_jump.<field>, kalman.<field> (map "
-                                 "filters' parameters "
-                                 "belong to casmap filter / bench)");
+                                 "filters' parameters belong to casmap filter / bench)");
         }
         const bool used =
             name.starts_with("shadow.")       ? settings.prefilter == Prefilter::kShadow

@@ -32,7 +32,7 @@ enum class MapperMode { kPaper, kKalman };
 [[nodiscard]] std::string_view ToString(MapperMode mode);
 
 /// Optional scan-domain pre-filter run on every scan before the mapper; its per-beam labels
-/// are the mapper's `keep` (mapper/scan_filters.hpp).
+/// are the mapper's `keep` (mapper/scan_filters.hpp, mapper/sweep_jump.hpp).
 enum class Prefilter { kNone, kShadow, kRangeJump, kSweepJump };
 /// "none" | "shadow" | "range_jump" | "sweep_jump"; throws InputError naming `field`.
 [[nodiscard]] Prefilter ParsePrefilter(std::string_view text, const std::string& field);
@@ -51,22 +51,24 @@ struct MapSettings {
     mapper::SweepJumpConfig sweep_jump;  // used when prefilter == kSweepJump
     mapper::KalmanNoiseConfig kalman;    // used when mode == kKalman
     /// Throws InputError naming the field (a, delta_l_m, shadow.<f>, range_jump.<f>,
-    /// kalman.<f>).
+    /// sweep_jump.<f>, kalman.<f>).
     void Validate() const;
 };
 
-/// The mapping-stage parameters of `params` (shadow.*, range_jump.*, kalman.*) into `settings`.
+/// The mapping-stage parameters of `params` (shadow.*, range_jump.*, sweep_jump.*, kalman.*)
+/// into `settings`.
 void SetStageParams(MapSettings& settings, const mapper::FilterParams& params);
 
-/// True for a parameter of a mapping stage (a name starting shadow., range_jump. or kalman.).
+/// True for a parameter of a mapping stage (a name starting shadow., range_jump., sweep_jump.
+/// or kalman.).
 [[nodiscard]] bool IsStageParameter(std::string_view name);
 
 /// Applies NAME=VALUE assignments (FilterParams::Set's names and ranges) of mapping-stage
 /// parameters to `settings`, then validates. Throws InputError naming `field` for an
 /// assignment that is not NAME=VALUE, a parameter that is not a stage's (a map filter's
 /// parameter) or a stage `settings` does not run (shadow.* without the shadow pre-filter,
-/// range_jump.* without range_jump, kalman.* without the Kalman mapper), and the parameter
-/// itself for a bad value.
+/// range_jump.* / sweep_jump.* without that pre-filter, kalman.* without the Kalman mapper), and
+/// the parameter itself for a bad value.
 void ApplyStageSettings(MapSettings& settings,
                         const std::vector<std::string>& assignments,
                         const std::string& field);
@@ -132,7 +134,8 @@ using core::FormatNumber;
 
 /// The settings that produced the maps of `run_path` (the file as given; `seed` null when the run
 /// has none) as YAML: run, seed, grid, mapper {mode, unknown, prefilter, a, delta_l_m,
-/// scan_period_s, and the parameters of the stages run: shadow, range_jump, kalman}, stats.
+/// scan_period_s, and the parameters of the stages run: shadow, range_jump, sweep_jump, kalman},
+/// stats.
 [[nodiscard]] std::string MapConfigYaml(const std::string& run_path,
                                         std::optional<std::uint64_t> seed,
                                         const MappedRun& mapped);

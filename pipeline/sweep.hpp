@@ -26,8 +26,8 @@ class DistributedSession;
 /// Parameters a sweep axis may name: A, G, B, h_sum_min, a, E, k, speed, the variants'
 /// support_tol_m, support_min (cas_trail, cas_median), ground_k, ground_quantile (cas_terrain),
 /// surface_tol_m, surface_min (cas_median), and the mapping stages' numeric parameters
-/// (shadow.*, range_jump.*, kalman.*: only when the swept pipeline runs that stage, e.g.
-/// --filter shadow_cas; InputError naming "axes" else).
+/// (shadow.*, range_jump.*, sweep_jump.*, kalman.*: only when the swept pipeline runs that stage,
+/// e.g. --filter shadow_cas; InputError naming "axes" else).
 [[nodiscard]] const std::vector<std::string>& SweepableParameters();
 
 /// Filters a sweep tunes: cas, cas_trail, cas_terrain.
