@@ -175,26 +175,16 @@ std::vector<std::vector<std::uint8_t>> PrefilterRunLabels(const std::vector<core
 
 namespace {
 
+// Every scan into `mapper` with its pre-filter labels (empty for kNone: keep all).
 template <typename Mapper>
 void AddScans(Mapper& mapper,
               const std::vector<core::Scan>& scans,
               const core::Trajectory& world_T_sensor,
               const MapSettings& settings) {
-    if (settings.prefilter == Prefilter::kSweepJump) {
-        const std::vector<std::vector<std::uint8_t>> keep =
-            mapper::SweepJumpLabels(scans, world_T_sensor, settings.sweep_jump);
-        for (std::size_t k = 0; k < scans.size(); ++k) {
-            mapper.AddScan(scans[k], world_T_sensor, keep[k]);
-        }
-        return;
-    }
-    for (const core::Scan& scan : scans) {
-        if (settings.prefilter == Prefilter::kNone) {
-            mapper.AddScan(scan, world_T_sensor);
-        } else {
-            const std::vector<std::uint8_t> keep = PrefilterLabels(scan, settings);
-            mapper.AddScan(scan, world_T_sensor, keep);
-        }
+    const std::vector<std::vector<std::uint8_t>> keep =
+        PrefilterRunLabels(scans, world_T_sensor, settings);
+    for (std::size_t k = 0; k < scans.size(); ++k) {
+        mapper.AddScan(scans[k], world_T_sensor, keep[k]);
     }
 }
 
