@@ -64,6 +64,12 @@ std::vector<Setting> Settings() {
         s.sweep_config.max_angle_deg = deg;
         out.push_back(s);
     }
+    for (const double share : {0.0, 0.25, 0.5}) {
+        Setting s{"sweep_jump depression_share=" + std::to_string(share).substr(0, 4),
+                  Kind::kSweepJump};
+        s.sweep_config.depression_share = share;
+        out.push_back(s);
+    }
     for (const double margin : {0.03, 0.07}) {
         Setting s{"sweep_jump margin_m=" + std::to_string(margin).substr(0, 4), Kind::kSweepJump};
         s.sweep_config.margin_m = margin;

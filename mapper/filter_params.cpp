@@ -222,6 +222,10 @@ const std::map<std::string, Setter, std::less<>>& Setters() {
          [](FilterParams& p, auto n, auto v) {
              p.sweep_jump.max_angle_deg = ParseBetween(n, v, 0, 90);
          }},
+        {"sweep_jump.depression_share",
+         [](FilterParams& p, auto n, auto v) {
+             p.sweep_jump.depression_share = ParseRange(n, v, 0, 1, false);
+         }},
         {"kalman.range_sigma_m",
          [](FilterParams& p, auto n, auto v) {
              p.kalman.range_sigma_m = ParseRange(n, v, 0, kInf, false);

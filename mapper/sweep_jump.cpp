@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -81,7 +82,15 @@ std::vector<std::uint8_t> Labels(const WorldBeams* before,
         }
         const Eigen::Vector3d chord = p1 - p0;
         const double length = chord.norm();
-        if (length > 0.0 && std::abs(chord.dot(d)) >= cos_max * length) {
+        double cos_limit = cos_max;
+        if (config.depression_share > 0.0) {
+            // Depression of the line of sight below the horizon (world z up); a beam at or
+            // above the horizon gets a zero limit: nothing rejected.
+            const double depression = std::asin(std::clamp(-d.z(), -1.0, 1.0));
+            cos_limit =
+                std::max(cos_limit, std::cos(config.depression_share * std::max(depression, 0.0)));
+        }
+        if (length > 0.0 && std::abs(chord.dot(d)) >= cos_limit * length) {
             keep[i] = 0;
         }
     }
@@ -98,6 +107,9 @@ void SweepJumpConfig::Validate() const {
                "sweep_jump.margin_m", margin_m, "allowed: >= 0 and <= jump_min_m / 2");
     check.That(std::isfinite(max_angle_deg) && max_angle_deg > 0.0 && max_angle_deg < 90.0,
                "sweep_jump.max_angle_deg", max_angle_deg, "allowed: > 0 and < 90");
+    check.That(
+        std::isfinite(depression_share) && depression_share >= 0.0 && depression_share <= 1.0,
+        "sweep_jump.depression_share", depression_share, "allowed: 0..1 (0: off)");
 }
 
 std::vector<std::vector<std::uint8_t>> SweepJumpLabels(std::span<const core::Scan> scans,

@@ -13,9 +13,14 @@
 //   2. its own range lies between those depths, more than margin_m from both, and
 //   3. the chord p- p+ runs within max_angle_deg of its line of sight (the veiling geometry of
 //      ROS laser_filters' ScanShadowsFilter, taken across scans): the three points lie on one
-//      line of sight, so the middle one is in mid-air between a near and a far surface.
+//      line of sight, so the middle one is in mid-air between a near and a far surface; and
+//      within depression_share times the beam's depression below the horizon: ground seen at
+//      a grazing angle delta makes a chord about delta from the line of sight, so a chord must
+//      be much closer than the ground's own grazing angle to mark a veil.
 // Test 3 keeps a floor seen by a rolling scanner: its consecutive points also change depth
-// fast, but along the floor, far from the line of sight. docs/paper-notes.md "Sweep jump".
+// fast, but along the floor, far from the line of sight; its depression part keeps the ground
+// of a pitching vehicle seen 7-12 degrees from the horizontal. docs/paper-notes.md
+// "Sweep jump".
 
 #include <cstdint>
 #include <span>
@@ -27,10 +32,12 @@
 namespace casmap::mapper {
 
 struct SweepJumpConfig {
-    double jump_min_m = 0.1;      // smallest depth gap between the neighbours (a depth edge)
-    double margin_m = 0.05;       // distance from both neighbours' depths (> LMS 200 noise)
-    double max_angle_deg = 10.0;  // chord within this angle of the line of sight
-    void Validate() const;        // throws InputError naming the field ("sweep_jump.<field>")
+    double jump_min_m = 0.1;         // smallest depth gap between the neighbours (a depth edge)
+    double margin_m = 0.05;          // distance from both neighbours' depths (> LMS 200 noise)
+    double max_angle_deg = 10.0;     // chord within this angle of the line of sight
+    double depression_share = 0.35;  // ... and within this share of the beam's depression
+                                     // below the horizon (0: no such limit)
+    void Validate() const;           // throws InputError naming the field ("sweep_jump.<field>")
 };
 
 /// Keep labels (1 keep, 0 reject) for every beam of every scan of a run, in scan order. Beams

@@ -75,7 +75,7 @@ TEST(FilterParams, SetsEveryNamedParameter) {
     p.Set("nan_median_mix", "0.5");
     EXPECT_EQ(p.cas.nan_median_mix, 0.5);
     EXPECT_NO_THROW(p.Validate());
-    EXPECT_EQ(FilterParams::Names().size(), 53U);  // 36 filter + 17 mapping-stage names
+    EXPECT_EQ(FilterParams::Names().size(), 54U);  // 36 filter + 18 mapping-stage names
 }
 
 TEST(FilterParams, SetsTheWaveTwoOptions) {

@@ -129,7 +129,41 @@ TEST(SweepJump, TheLineOfSightTestKeepsAFloorSeenByARollingScanner) {
     EXPECT_TRUE(Rejected(SweepJumpLabels(run.scans, run.poses, {})).empty());
     SweepJumpConfig no_chord;
     no_chord.max_angle_deg = 89.9;
+    no_chord.depression_share = 0.0;
     EXPECT_GT(Rejected(SweepJumpLabels(run.scans, run.poses, no_chord)).size(), 100U);
+}
+
+// A scanner 0.5 m above a flat floor looking 7 degrees down, its pitch rising 0.3 degrees per
+// scan (a vehicle pitching over rough ground): the floor ranges fall 0.1-0.2 m per scan, so each
+// return lies between its neighbours, and their chord runs along the floor, 7-9 degrees from
+// the line of sight, inside max_angle_deg.
+TEST(SweepJump, TheDepressionLimitKeepsGroundSeenAtAGrazingAngle) {
+    std::vector<core::TimedPose> samples;
+    std::vector<core::Scan> scans;
+    for (int k = 0; k < 8; ++k) {
+        const core::Pose pose =
+            core::PoseFromXyzRpy({0.01 * k, 0.0, 0.5}, {0.0, (7.0 + 0.3 * k) * kDeg, 0.0});
+        samples.push_back({k * kScanPeriodS, pose});
+        core::Scan scan;
+        scan.stamp_s = k * kScanPeriodS;
+        scan.start_angle_rad = -10.0 * kDeg;
+        scan.angle_step_rad = kDeg;
+        scan.beam_period_s = 0.0;
+        for (int i = 0; i <= 20; ++i) {
+            const double angle = (-10.0 + i) * kDeg;
+            const Eigen::Vector3d d =
+                pose.rotation * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0.0);
+            scan.beams.push_back(core::Beam{static_cast<float>(ToPlane(pose.translation, d, 0.0)),
+                                            core::BeamStatus::kOk, 0});
+        }
+        scans.push_back(std::move(scan));
+    }
+    const core::Trajectory poses(std::move(samples));
+    EXPECT_TRUE(Rejected(SweepJumpLabels(scans, poses, {})).empty());
+    SweepJumpConfig no_depression_limit;
+    no_depression_limit.depression_share = 0.0;
+    // Every beam of every inner scan: 6 scans x 21 beams.
+    EXPECT_EQ(Rejected(SweepJumpLabels(scans, poses, no_depression_limit)).size(), 126U);
 }
 
 TEST(SweepJump, KeepsAForegroundReturnAndEveryBeamItCannotJudge) {
@@ -240,6 +274,9 @@ TEST(SweepJump, ValidatesEveryFieldByName) {
     c = {};
     c.max_angle_deg = std::nan("");
     fails(c, "sweep_jump.max_angle_deg");
+    c = {};
+    c.depression_share = 1.5;
+    fails(c, "sweep_jump.depression_share");
     c = {};
     c.margin_m = 0.05;  // exactly jump_min_m / 2: allowed
     EXPECT_NO_THROW(c.Validate());
