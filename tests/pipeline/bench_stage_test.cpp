@@ -40,7 +40,8 @@ TEST(BenchStage, SweepJumpSectionMapsItsPipelineAgain) {
     EXPECT_EQ(rmse(own, "sweep_jump_median"), rmse(narrow, "sweep_jump_median"));
     // The run's config lists the shared values, and the section's under its pipeline.
     const std::string& config = own.run_configs[0];
-    EXPECT_NE(config.find("sweep_jump: {jump_min_m: 0.1, margin_m: 0.05, max_angle_deg: 10}"),
+    EXPECT_NE(config.find("sweep_jump: {jump_min_m: 0.1, margin_m: 0.05, max_angle_deg: 10, "
+                          "depression_share: 0.35}"),
               std::string::npos)
         << config;
     EXPECT_NE(config.find("sweep_jump_median: [sweep_jump.max_angle_deg=2.5]"), std::string::npos)
