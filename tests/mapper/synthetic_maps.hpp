@@ -3,10 +3,15 @@
 // noisy floor, the pole-with-trail case and a bit-for-bit map comparison.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cstdint>
 #include <cstring>
+#include <string>
 
 #include "casmap/core/grid.hpp"
+#include "casmap/core/input_error.hpp"
+#include "casmap/mapper/filter_params.hpp"
 
 namespace casmap::mapper::test_maps {
 
@@ -62,6 +67,17 @@ inline bool SameBits(float a, float b) { return std::memcmp(&a, &b, sizeof(float
 inline bool SameBits(const core::MapF& a, const core::MapF& b) {
     return a.data.size() == b.data.size() &&
            std::memcmp(a.data.data(), b.data.data(), 4 * a.data.size()) == 0;
+}
+
+// FilterParams::Set(name, value) must throw an InputError that names the parameter.
+inline void ExpectSetRejects(const std::string& name, const std::string& value) {
+    FilterParams params;
+    try {
+        params.Set(name, value);
+        ADD_FAILURE() << name << "=" << value << " accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
 }
 
 }  // namespace casmap::mapper::test_maps
