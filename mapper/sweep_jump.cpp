@@ -53,6 +53,27 @@ bool SameGeometry(const core::Scan& a, const core::Scan& b) {
            a.angle_step_rad == b.angle_step_rad;
 }
 
+// The median time between consecutive scans (0 with fewer than two scans).
+double MedianGap(std::span<const core::Scan> scans) {
+    std::vector<double> gaps;
+    for (std::size_t k = 1; k < scans.size(); ++k) {
+        gaps.push_back(std::abs(scans[k].stamp_s - scans[k - 1].stamp_s));
+    }
+    if (gaps.empty()) {
+        return 0.0;
+    }
+    auto mid = gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2);
+    std::nth_element(gaps.begin(), mid, gaps.end());
+    return *mid;
+}
+
+// A neighbour scan counts only with the same beam grid and no dropped scan in between: at
+// most 1.5 median gaps away (a recorded run may lose telegrams; two scans apart, the sensor
+// has moved twice as far and a surface's own depth change can look like a jump).
+bool UsableNeighbour(const core::Scan& scan, const core::Scan& neighbour, double max_gap_s) {
+    return SameGeometry(scan, neighbour) && std::abs(neighbour.stamp_s - scan.stamp_s) <= max_gap_s;
+}
+
 // Labels of the middle scan `cur` from its neighbours (either may be null: keep all).
 std::vector<std::uint8_t> Labels(const WorldBeams* before,
                                  const WorldBeams& cur,
@@ -120,6 +141,7 @@ std::vector<std::vector<std::uint8_t>> SweepJumpLabels(std::span<const core::Sca
     if (scans.empty()) {
         return labels;
     }
+    const double max_gap_s = 1.5 * MedianGap(scans);
     // A window of three scans' world beams, each computed once.
     std::optional<WorldBeams> before;
     WorldBeams cur = ToWorld(scans[0], world_T_sensor);
@@ -128,8 +150,8 @@ std::vector<std::vector<std::uint8_t>> SweepJumpLabels(std::span<const core::Sca
         if (k + 1 < scans.size()) {
             after = ToWorld(scans[k + 1], world_T_sensor);
         }
-        const bool use_before = before && SameGeometry(scans[k - 1], scans[k]);
-        const bool use_after = after && SameGeometry(scans[k + 1], scans[k]);
+        const bool use_before = before && UsableNeighbour(scans[k], scans[k - 1], max_gap_s);
+        const bool use_after = after && UsableNeighbour(scans[k], scans[k + 1], max_gap_s);
         labels[k] =
             Labels(use_before ? &*before : nullptr, cur, use_after ? &*after : nullptr, config);
         if (after) {

@@ -42,8 +42,9 @@ struct SweepJumpConfig {
 
 /// Keep labels (1 keep, 0 reject) for every beam of every scan of a run, in scan order. Beams
 /// with status != kOk, without a pose at their time, and the first and last scan's beams are
-/// kept; a neighbour scan with another beam count, start angle or angle step counts as
-/// missing. Deterministic: each label depends only on the three scans and the trajectory.
+/// kept; a neighbour scan with another beam count, start angle or angle step, or more than 1.5
+/// median scan gaps away in time (a dropped scan between), counts as missing. Deterministic: each
+/// label depends only on the three scans and the trajectory.
 [[nodiscard]] std::vector<std::vector<std::uint8_t>> SweepJumpLabels(
     std::span<const core::Scan> scans,
     const core::Trajectory& world_T_sensor,

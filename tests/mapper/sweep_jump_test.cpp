@@ -184,6 +184,15 @@ TEST(SweepJump, KeepsAForegroundReturnAndEveryBeamItCannotJudge) {
     SweepRun other = run;
     other.scans[1].angle_step_rad = 0.5 * kDeg;
     EXPECT_TRUE(Rejected(SweepJumpLabels(other.scans, other.poses, {})).empty());
+    // A neighbour more than 1.5 median scan gaps away (a scan dropped between) counts as
+    // missing; one within the jitter allowance still counts.
+    other = run;
+    other.scans[3].stamp_s += 0.9 * kScanPeriodS;
+    EXPECT_TRUE(Rejected(SweepJumpLabels(other.scans, other.poses, {})).empty());
+    other = run;
+    other.scans[3].stamp_s += 0.3 * kScanPeriodS;
+    EXPECT_EQ(Rejected(SweepJumpLabels(other.scans, other.poses, {})),
+              (std::set<std::pair<int, int>>{{2, 91}}));
     other = run;
     other.scans[2].stamp_s = 99.0;  // after the trajectory's end
     EXPECT_TRUE(Rejected(SweepJumpLabels(other.scans, other.poses, {})).empty());
