@@ -17,6 +17,7 @@
 namespace casmap::mapper {
 namespace {
 
+using test_maps::ExpectFilterRejects;
 using test_maps::ExpectSetRejects;
 using test_maps::Maps;
 using test_maps::Noise;
@@ -169,12 +170,7 @@ TEST(CasEdge, RejectsBadParametersNamingTheField) {
     }
     params.cas.edge_min = 0;  // set directly: Validate (run by every filter) names it
     const Maps p = NoisyFloor();
-    try {
-        (void)RunFilter(FilterMethod::kCasEdge, p.h, p.c, params);
-        ADD_FAILURE() << "edge_min 0 accepted";
-    } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("edge_min"), std::string::npos) << e.what();
-    }
+    ExpectFilterRejects(FilterMethod::kCasEdge, p.h, p.c, params, "edge_min");
     EXPECT_THROW((void)RunFilter(FilterMethod::kCasEdge, p.h, core::MapF(3, 3), FilterParams{}),
                  InputError);
     EXPECT_EQ(ParseFilterMethod("cas_edge"), FilterMethod::kCasEdge);

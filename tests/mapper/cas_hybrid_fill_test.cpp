@@ -20,6 +20,7 @@
 namespace casmap::mapper {
 namespace {
 
+using test_maps::ExpectFilterRejects;
 using test_maps::ExpectSetRejects;
 using test_maps::Maps;
 using test_maps::Noise;
@@ -201,21 +202,12 @@ TEST(CasHybridFill, RejectsBadValuesNamingTheField) {
     }
     FilterParams run;
     run.cas.edge_fill_run = 3;
-    try {
-        (void)RunFilter(FilterMethod::kCasHybrid, NoisyFloor().h, NoisyFloor().c, run);
-        ADD_FAILURE() << "edge_fill_run 3 accepted";
-    } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("edge_fill_run"), std::string::npos) << e.what();
-    }
+    ExpectFilterRejects(FilterMethod::kCasHybrid, NoisyFloor().h, NoisyFloor().c, run,
+                        "edge_fill_run");
     FilterParams bad;
     bad.cas.edge_fill = 2.0;  // set directly: Validate (run by every filter) names it
     const Maps p = NoisyFloor();
-    try {
-        (void)RunFilter(FilterMethod::kCasHybrid, p.h, p.c, bad);
-        ADD_FAILURE() << "edge_fill 2 accepted";
-    } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("edge_fill"), std::string::npos) << e.what();
-    }
+    ExpectFilterRejects(FilterMethod::kCasHybrid, p.h, p.c, bad, "edge_fill");
 }
 
 }  // namespace

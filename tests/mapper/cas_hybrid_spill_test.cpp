@@ -20,6 +20,7 @@
 namespace casmap::mapper {
 namespace {
 
+using test_maps::ExpectFilterRejects;
 using test_maps::ExpectSetRejects;
 using test_maps::Maps;
 using test_maps::Noise;
@@ -146,20 +147,10 @@ TEST(CasHybridSpill, RejectsBadValuesNamingTheField) {
     const Maps p = NoisyFloor();
     FilterParams bad;
     bad.cas.edge_spill = -0.5;  // set directly: Validate (run by every filter) names it
-    try {
-        (void)RunFilter(FilterMethod::kCasHybrid, p.h, p.c, bad);
-        ADD_FAILURE() << "edge_spill -0.5 accepted";
-    } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("edge_spill"), std::string::npos) << e.what();
-    }
+    ExpectFilterRejects(FilterMethod::kCasHybrid, p.h, p.c, bad, "edge_spill");
     FilterParams bad_c;
     bad_c.cas.edge_spill_c = -3.0;
-    try {
-        (void)RunFilter(FilterMethod::kCasHybrid, p.h, p.c, bad_c);
-        ADD_FAILURE() << "edge_spill_c -3 accepted";
-    } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("edge_spill_c"), std::string::npos) << e.what();
-    }
+    ExpectFilterRejects(FilterMethod::kCasHybrid, p.h, p.c, bad_c, "edge_spill_c");
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "casmap/core/grid.hpp"
 #include "casmap/core/input_error.hpp"
 #include "casmap/mapper/filter_params.hpp"
+#include "casmap/mapper/filters.hpp"
 
 namespace casmap::mapper::test_maps {
 
@@ -77,6 +78,21 @@ inline void ExpectSetRejects(const std::string& name, const std::string& value) 
         ADD_FAILURE() << name << "=" << value << " accepted";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+}
+
+// RunFilter(method, h, c, params) must throw an InputError that names `field` (a value set
+// directly on the struct, past Set's checks: Validate, run by every filter, catches it).
+inline void ExpectFilterRejects(FilterMethod method,
+                                const core::MapF& h,
+                                const core::MapF& c,
+                                const FilterParams& params,
+                                const std::string& field) {
+    try {
+        (void)RunFilter(method, h, c, params);
+        ADD_FAILURE() << field << " accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
     }
 }
 
