@@ -20,6 +20,7 @@
 namespace casmap::mapper {
 namespace {
 
+using test_maps::CellsThatDiffer;
 using test_maps::ExpectFilterRejects;
 using test_maps::ExpectSetRejects;
 using test_maps::Maps;
@@ -52,14 +53,6 @@ FilterParams Params(const char* fill) {
     params.Set("A", "25");
     params.Set("edge_fill", fill);
     return params;
-}
-
-int CellsThatDiffer(const core::MapF& a, const core::MapF& b) {
-    int n = 0;
-    for (std::size_t k = 0; k < a.data.size(); ++k) {
-        n += std::memcmp(&a.data[k], &b.data[k], 4) != 0 ? 1 : 0;
-    }
-    return n;
 }
 
 TEST(CasHybridFill, TheFirstShadowColumnTakesItsShareOfTheStep) {

@@ -20,6 +20,7 @@
 namespace casmap::mapper {
 namespace {
 
+using test_maps::CellsThatDiffer;
 using test_maps::ExpectFilterRejects;
 using test_maps::ExpectSetRejects;
 using test_maps::Maps;
@@ -62,14 +63,6 @@ FilterParams Params(const char* spill_c, const char* spill, const char* fill = "
 
 core::MapF Hybrid(const Maps& p, const FilterParams& params) {
     return RunFilter(FilterMethod::kCasHybrid, p.h, p.c, params).elevation;
-}
-
-int CellsThatDiffer(const core::MapF& a, const core::MapF& b) {
-    int n = 0;
-    for (std::size_t k = 0; k < a.data.size(); ++k) {
-        n += std::memcmp(&a.data[k], &b.data[k], 4) != 0 ? 1 : 0;
-    }
-    return n;
 }
 
 TEST(CasHybridSpill, AOneHitCellBelowTheTopTakesItsShareOfTheStepDown) {

@@ -70,6 +70,15 @@ inline bool SameBits(const core::MapF& a, const core::MapF& b) {
            std::memcmp(a.data.data(), b.data.data(), 4 * a.data.size()) == 0;
 }
 
+// Cells whose bits differ between two maps of the same shape (NaN equal to the same NaN).
+inline int CellsThatDiffer(const core::MapF& a, const core::MapF& b) {
+    int n = 0;
+    for (std::size_t k = 0; k < a.data.size(); ++k) {
+        n += SameBits(a.data[k], b.data[k]) ? 0 : 1;
+    }
+    return n;
+}
+
 // FilterParams::Set(name, value) must throw an InputError that names the parameter.
 inline void ExpectSetRejects(const std::string& name, const std::string& value) {
     FilterParams params;
