@@ -13,6 +13,7 @@
 
 #include "casmap/io/image.hpp"
 #include "tests/apps/cli_runner.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap {
 namespace {
@@ -32,11 +33,6 @@ int Lines(const std::string& s) {
 class FilterCommand : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::path(testing::TempDir()) /
-               ("casmap_filter_cmd_" +
-                std::string(testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
         // A 20 x 24 map: floor at 2 mm seen 5 times (c = 15), a box top at 0.4 m, a sparsely
         // seen corner (c = 3) holding a spike, and a hole in the box top.
         h_ = core::MapF(20, 24, 0.002F);
@@ -57,7 +53,6 @@ protected:
         io::WriteMapTiff(dir_ / "h.tiff", h_);
         io::WriteMapTiff(dir_ / "c.tiff", c_);
     }
-    void TearDown() override { fs::remove_all(dir_); }
     std::string P(const std::string& name) const { return (dir_ / name).string(); }
     void ExpectBadInput(const std::string& args, const std::string& needle) {
         const Result r = Casmap("filter " + args + " --out " + P("out.tiff"));
@@ -67,7 +62,8 @@ protected:
         EXPECT_FALSE(fs::exists(dir_ / "out.tiff"));
         EXPECT_FALSE(fs::exists(dir_ / "out.png"));
     }
-    fs::path dir_;
+    const casmap::test::TempDir tmp_{"filter_cmd"};
+    const fs::path dir_ = tmp_.Path();
     core::MapF h_;
     core::MapF c_;
 };

@@ -14,6 +14,7 @@
 #include "casmap/io/image.hpp"
 #include "casmap/io/run_file.hpp"
 #include "tests/apps/cli_runner.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap {
 namespace {
@@ -25,12 +26,7 @@ constexpr double kBlockTopM = 0.2;  // block over x in [1.0, 1.3], y in [-0.2, 0
 using test::Casmap;
 using test::Result;
 
-fs::path FreshDir(const std::string& name) {
-    const fs::path dir = fs::path(testing::TempDir()) / ("casmap_map_cmd_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path FreshDir(const std::string& name) { return casmap::test::MakeTempDir("map_cmd_" + name); }
 
 /// Exact range along a ray to the floor (z = 0) or the block's top, whichever is hit first;
 /// NaN if the ray goes up. Block sides are ignored (the test only checks floor and top cells).

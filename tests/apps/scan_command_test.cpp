@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "tests/apps/cli_runner.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap {
 namespace {
@@ -23,7 +24,7 @@ using test::Casmap;
 using test::Result;
 
 fs::path SceneFile() {
-    const fs::path path = fs::path(testing::TempDir()) / "casmap_scan_cmd_scene.yaml";
+    const fs::path path = casmap::test::MakeTempDir("scan_cmd") / "casmap_scan_cmd_scene.yaml";
     std::ofstream(path) << "objects:\n"
                            "  - name: floor\n"
                            "    box: {size_m: [40, 40, 0.02]}\n"

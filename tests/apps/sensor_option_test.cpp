@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tests/apps/cli_runner.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap {
 namespace {
@@ -22,7 +23,8 @@ using test::Result;
 bool HaveSimulator() { return Casmap("--help").output.find("\n  scan ") != std::string::npos; }
 
 fs::path Write(const std::string& name, const std::string& text) {
-    const fs::path path = fs::path(testing::TempDir()) / ("casmap_sensor_option_" + name);
+    const fs::path path =
+        casmap::test::MakeTempDir("sensor_option") / ("casmap_sensor_option_" + name);
     std::ofstream(path) << text;
     return path;
 }
@@ -77,7 +79,8 @@ TEST(SensorOption, BadSensorFileExitsWithCodeTwoAndOneLine) {
     const std::string scene = FarWallScene().string();
     const std::string bad_value = Write("bad_value.yaml", "ideal: true\np_dropout: 2\n").string();
     const std::string bad_key = Write("bad_key.yaml", "r10_m: 10\nr11_m: 3\n").string();
-    const std::string out = (fs::path(testing::TempDir()) / "casmap_sensor_option_bad.h5").string();
+    const std::string out =
+        (casmap::test::MakeTempDir("sensor_option") / "casmap_sensor_option_bad.h5").string();
     const std::pair<std::string, std::string> cases[] = {
         {"scan --scene " + scene + " --pose 0,0,1,0,0,0 --sensor " + bad_value,
          bad_value + ":2:1: lms200.p_dropout = 2"},
@@ -99,7 +102,7 @@ TEST(SensorOption, SimulateRecordsTheSensorConfigItUsed) {
         GTEST_SKIP() << "built without the simulator";
     }
     const std::string sensor = Write("seven.yaml", "subrays_per_pulse: 7\np_dropout: 0.01\n");
-    const fs::path out = fs::path(testing::TempDir()) / "casmap_sensor_option_run.h5";
+    const fs::path out = casmap::test::MakeTempDir("sensor_option") / "casmap_sensor_option_run.h5";
     const std::string scene = std::string(CASMAP_SOURCE_DIR) + "/scenes/courses/course01.yaml";
     const Result r = Casmap("simulate --scene " + scene + " --motion T --seed 3 --threads 1" +
                             " --sensor " + sensor + " --out " + out.string());

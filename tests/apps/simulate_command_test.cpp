@@ -14,6 +14,7 @@
 
 #include "casmap/io/run_file.hpp"
 #include "tests/apps/cli_runner.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap {
 namespace {
@@ -36,9 +37,7 @@ std::string ReadBytes(const fs::path& path) {
 constexpr double kBoxTopM = 0.3;
 
 fs::path MakeScene(const std::string& name) {
-    const fs::path dir = fs::path(testing::TempDir()) / ("casmap_sim_cmd_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = casmap::test::MakeTempDir("sim_cmd_" + name);
     std::ofstream(dir / "scene.yaml") << R"(objects:
   - name: floor
     box: {size_m: [14, 8, 0.02]}

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "tests/apps/cli_runner.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::test {
 namespace {
@@ -32,18 +33,17 @@ TEST(ViewCommand, MissingDirIsExit2NamingIt) {
 }
 
 TEST(ViewCommand, FolderWithoutMarkerIsExit2) {
-    const fs::path dir = fs::temp_directory_path() / "casmap_view_cli_empty";
-    fs::create_directories(dir);
+    const casmap::test::TempDir tmp("view_cli_empty");
+    const fs::path& dir = tmp.Path();
     const Result r = Casmap("view " + dir.string() + " --port 0");
     EXPECT_EQ(r.code, 2) << r.output;
     EXPECT_EQ(Lines(r.output), 1) << r.output;
     EXPECT_NE(r.output.find("bench.json"), std::string::npos) << r.output;
-    fs::remove_all(dir);
 }
 
 TEST(ViewCommand, BusyPortIsExit2NamingPort) {
-    const fs::path dir = fs::temp_directory_path() / "casmap_view_cli_busy";
-    fs::create_directories(dir);
+    const casmap::test::TempDir tmp("view_cli_busy");
+    const fs::path& dir = tmp.Path();
     std::ofstream(dir / "bench.json") << R"({"runs": []})";
     // Hold a loopback port.
     const int sock = socket(AF_INET, SOCK_STREAM, 0);
@@ -62,7 +62,6 @@ TEST(ViewCommand, BusyPortIsExit2NamingPort) {
     EXPECT_EQ(r.code, 2) << r.output;
     EXPECT_EQ(Lines(r.output), 1) << r.output;
     EXPECT_NE(r.output.find("--port"), std::string::npos) << r.output;
-    fs::remove_all(dir);
 }
 
 }  // namespace

@@ -16,18 +16,14 @@
 #include "casmap/io/image.hpp"
 #include "casmap/io/run_file.hpp"
 #include "casmap/io/yaml_util.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::io {
 namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-fs::path FreshDir(const std::string& name) {
-    const fs::path dir = fs::path(testing::TempDir()) / ("casmap_limits_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path FreshDir(const std::string& name) { return casmap::test::MakeTempDir("limits_" + name); }
 
 template <typename F>
 std::string ErrorOf(F&& f) {

@@ -12,6 +12,7 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/atomic_file.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::io {
 namespace {
@@ -19,10 +20,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
 fs::path FreshDir(const std::string& name) {
-    const fs::path dir = fs::path(testing::TempDir()) / ("casmap_output_set_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
+    return casmap::test::MakeTempDir("output_set_" + name);
 }
 
 std::string Slurp(const fs::path& p) {

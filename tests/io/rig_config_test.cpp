@@ -10,6 +10,7 @@
 #include <string>
 
 #include "casmap/core/input_error.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::io {
 namespace {
@@ -20,7 +21,9 @@ std::string SourceDir() { return CASMAP_SOURCE_DIR; }
 
 /// Writes `text` to a fresh file under the test temp dir and returns its path.
 std::string WriteTemp(const std::string& name, const std::string& text) {
-    const std::string path = testing::TempDir() + "/rig_config_test_" + name + ".yaml";
+    const std::string path =
+        (casmap::test::MakeTempDir("rig_config_test") / ("rig_config_test_" + name + ".yaml"))
+            .string();
     std::ofstream(path) << text;
     return path;
 }

@@ -15,6 +15,7 @@
 #include "casmap/io/hdf5_object_header.hpp"
 #include "casmap/io/run_file.hpp"
 #include "run_file_fixtures.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::io {
 namespace {
@@ -25,8 +26,7 @@ namespace fs = std::filesystem;
 const fs::path kSource = CASMAP_SOURCE_DIR;
 
 std::string WrittenRun() {
-    const fs::path dir = fs::path(testing::TempDir()) / "casmap_run_attribute";
-    fs::create_directories(dir);
+    const casmap::test::TempDir dir("run_attribute");
     WriteRunFile(dir / "run.h5", SmallRun());
     return ReadBytes(dir / "run.h5");
 }

@@ -15,6 +15,7 @@
 #include "casmap/io/hdf5_global_heap.hpp"
 #include "casmap/io/run_file.hpp"
 #include "run_file_fixtures.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::io {
 namespace {
@@ -43,9 +44,8 @@ void PutLength(std::string& bytes, std::size_t at, std::uint64_t value) {
 }
 
 TEST(RunFileHeap, NewFilesHoldNoGlobalHeapAndRoundTrip) {
-    const fs::path dir = fs::path(testing::TempDir()) / "casmap_run_heap_new";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const casmap::test::TempDir tmp("run_heap_new");
+    const fs::path& dir = tmp.Path();
     const RunData run = SmallRun();
     WriteRunFile(dir / "run.h5", run);
     const std::string bytes = ReadBytes(dir / "run.h5");

@@ -14,6 +14,7 @@
 
 #include "casmap/core/input_error.hpp"
 #include "run_file_fixtures.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::io {
 namespace {
@@ -23,12 +24,7 @@ namespace fs = std::filesystem;
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 constexpr std::uint32_t kSeed = 20240611;
 
-fs::path FreshDir(const std::string& name) {
-    const fs::path dir = fs::path(testing::TempDir()) / ("casmap_run_file_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path FreshDir(const std::string& name) { return casmap::test::MakeTempDir("run_file_" + name); }
 
 /// Runs /usr/bin/python3 (Debian's, with h5py) on `script`; returns stdout.
 std::string RunPython(const fs::path& dir, const std::string& script, int* status = nullptr) {

@@ -12,6 +12,7 @@
 #include "casmap/io/mesh_import.hpp"
 #include "casmap/io/rig_config.hpp"
 #include "casmap/io/scene_file.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::io {
 namespace {
@@ -19,9 +20,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
 fs::path Write(const std::string& dir_name, const std::string& file, const std::string& text) {
-    const fs::path dir = fs::path(testing::TempDir()) / ("casmap_scene_limits_" + dir_name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = casmap::test::MakeTempDir("scene_limits_" + dir_name);
     std::ofstream(dir / file, std::ios::binary) << text;
     return dir / file;
 }

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "casmap/core/input_error.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::io {
 namespace {
@@ -17,7 +18,9 @@ using sensor_models::Lms200Config;
 using testing::HasSubstr;
 
 std::string WriteTemp(const std::string& name, const std::string& text) {
-    const std::string path = testing::TempDir() + "/sensor_config_test_" + name + ".yaml";
+    const std::string path =
+        (casmap::test::MakeTempDir("sensor_config_test") / ("sensor_config_test_" + name + ".yaml"))
+            .string();
     std::ofstream(path) << text;
     return path;
 }

@@ -11,6 +11,7 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/pipeline/preset.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -100,7 +101,7 @@ TEST(BenchPipelines, ParseListsAllAndRejectsUnknownNames) {
 }
 
 fs::path WriteFile(const std::string& name, const std::string& text) {
-    const fs::path path = fs::path(testing::TempDir()) / name;
+    const fs::path path = casmap::test::MakeTempDir("bench_pipelines") / name;
     std::ofstream(path) << text;
     return path;
 }

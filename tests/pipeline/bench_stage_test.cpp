@@ -8,6 +8,7 @@
 #include <string>
 
 #include "casmap/pipeline/bench.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -16,8 +17,8 @@ namespace {
 // sweep_jump_median equals a bench where the whole run had the section's value. If the stage
 // key left sweep_jump's parameters out, both pipelines would share the first map made.
 TEST(BenchStage, SweepJumpSectionMapsItsPipelineAgain) {
-    const std::filesystem::path file =
-        std::filesystem::path(testing::TempDir()) / "casmap_bench_sweep_jump_preset.yaml";
+    const casmap::test::TempDir tmp("bench_sweep_jump_preset");
+    const std::filesystem::path file = tmp / "casmap_bench_sweep_jump_preset.yaml";
     std::ofstream(file) << "set: {}\npipelines:\n"
                            "  sweep_jump_median: {sweep_jump.max_angle_deg: 2.5}\n";
     BenchOptions options;

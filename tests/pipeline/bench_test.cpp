@@ -16,6 +16,7 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
 #include "casmap/pipeline/preset.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -183,8 +184,8 @@ TEST(RunBench, EveryPipelineReportsEveryFieldAndThePaperFiveAreUnchanged) {
 // A terrain scene through BenchOptions::scenes: unknown cells NaN, the truth keeps heights
 // below the datum, RMSEs over observed cells, poles of the scene counted.
 TEST(RunBench, TerrainSceneRunsWithNanUnknownCells) {
-    const std::filesystem::path scene =
-        std::filesystem::path(testing::TempDir()) / "casmap_bench_slope.yaml";
+    const casmap::test::TempDir tmp("bench_slope");
+    const std::filesystem::path scene = tmp / "casmap_bench_slope.yaml";
     std::ofstream(scene) << "objects:\n"
                             "  - name: slope\n"
                             "    box: {size_m: [8, 4, 0.2]}\n"
@@ -273,8 +274,8 @@ TEST(BenchOptions, PipelinesScenesAndPresetsAreValidated) {
 // A preset's `pipelines:` section tunes one pipeline only: the others keep the shared values,
 // the tuned one equals a bench where the whole run had those values; --set overrides both.
 TEST(RunBench, PresetPipelineSectionsApplyToTheirPipelineOnly) {
-    const std::filesystem::path file =
-        std::filesystem::path(testing::TempDir()) / "casmap_bench_own_preset.yaml";
+    const casmap::test::TempDir tmp("bench_own_preset");
+    const std::filesystem::path file = tmp / "casmap_bench_own_preset.yaml";
     std::ofstream(file) << "set: {}\npipelines:\n  cas_trail: {A: 25, support_min: 9}\n"
                            "  kalman_median: {window: 7}\n";
     BenchOptions options;
@@ -315,8 +316,8 @@ TEST(RunBench, PresetPipelineSectionsApplyToTheirPipelineOnly) {
 // made with it (its figures equal a bench with the value for every pipeline), the pipelines
 // sharing the stage without a section keep the defaults, and the run's configuration shows it.
 TEST(RunBench, PresetSectionsSetPreFilterAndKalmanParameters) {
-    const std::filesystem::path file =
-        std::filesystem::path(testing::TempDir()) / "casmap_bench_stage_preset.yaml";
+    const casmap::test::TempDir tmp("bench_stage_preset");
+    const std::filesystem::path file = tmp / "casmap_bench_stage_preset.yaml";
     std::ofstream(file) << "set: {}\npipelines:\n  shadow_cas: {shadow.min_angle_deg: 25}\n"
                            "  kalman_median: {kalman.mahalanobis_gate: 1.0}\n";
     BenchOptions options;
@@ -359,8 +360,8 @@ TEST(RunBench, PresetSectionsSetPreFilterAndKalmanParameters) {
 
 // A bad stage value in a preset section names the file, the section and the parameter.
 TEST(LoadPreset, BadStageValueNamesTheSectionAndParameter) {
-    const std::filesystem::path file =
-        std::filesystem::path(testing::TempDir()) / "casmap_bad_stage_preset.yaml";
+    const casmap::test::TempDir tmp("bad_stage_preset");
+    const std::filesystem::path file = tmp / "casmap_bad_stage_preset.yaml";
     std::ofstream(file) << "set: {}\npipelines:\n  range_jump_cas: {range_jump.jump_min_m: -1}\n";
     try {
         (void)LoadPreset(file.string());
@@ -392,9 +393,8 @@ TEST(BenchOptions, PaperPresetEqualsTheDefaults) {
 }
 
 TEST(RunBenchToFolder, SwapsInTheOutputsAndTheJsonCopy) {
-    const std::filesystem::path dir =
-        std::filesystem::path(testing::TempDir()) / "casmap_pipeline_bench_folder";
-    std::filesystem::remove_all(dir);
+    const casmap::test::TempDir tmp("pipeline_bench_folder");
+    const std::filesystem::path& dir = tmp.Path();
     std::filesystem::create_directories(dir / "not_a_bench");
     std::ofstream(dir / "not_a_bench" / "notes.txt") << "mine";
     BenchOptions options;

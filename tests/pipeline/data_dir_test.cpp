@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "casmap/core/input_error.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -42,12 +43,12 @@ TEST(DataDir, InTreeBuildFindsTheSourceTree) {
 }
 
 TEST(DataDir, EnvironmentWins) {
-    const fs::path dir = fs::temp_directory_path() / "casmap_data_dir_test";
+    const casmap::test::TempDir tmp("data_dir_test");
+    const fs::path& dir = tmp.Path();
     fs::create_directories(dir / "scenes" / "courses");
     const ScopedDataDirEnv env(dir.string());
     EXPECT_EQ(DataDir(), dir);
     EXPECT_EQ(CoursesDir(), dir / "scenes" / "courses");
-    fs::remove_all(dir);
 }
 
 TEST(DataDir, EnvironmentWithoutScenesIsAnInputErrorNamingIt) {

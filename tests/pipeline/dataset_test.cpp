@@ -15,30 +15,15 @@
 #include "casmap/io/scene_file.hpp"
 #include "casmap/pipeline/sim_pipeline.hpp"
 #include "casmap/sim/world.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::pipeline {
 namespace {
 namespace fs = std::filesystem;
 
-// Per process (several worktrees' test runs share /tmp on one machine), removed at exit.
-struct TempDirs {
-    std::vector<fs::path> made;
-    ~TempDirs() {
-        for (const fs::path& dir : made) {
-            std::error_code ignored;
-            fs::remove_all(dir, ignored);
-        }
-    }
-};
-
+// Unique per call (several worktrees' test runs share /tmp on one machine), removed at exit.
 fs::path TempDir(const std::string& name) {
-    static TempDirs dirs;
-    const fs::path dir = fs::temp_directory_path() /
-                         ("casmap_dataset_test_" + std::to_string(::getpid()) + "_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    dirs.made.push_back(dir);
-    return dir;
+    return casmap::test::MakeTempDir("dataset_test_" + name);
 }
 
 std::string Slurp(const fs::path& path) {

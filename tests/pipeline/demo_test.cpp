@@ -9,6 +9,7 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/image.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -45,8 +46,8 @@ TEST(Demo, TheSeedAndTheIncrementShapeTheMap) {
 }
 
 TEST(Demo, WritesEveryMapBesideTheClasses) {
-    const fs::path dir = fs::path(testing::TempDir()) / "casmap_pipeline_demo" / "maps";
-    fs::remove_all(dir.parent_path());
+    const casmap::test::TempDir tmp("pipeline_demo");
+    const fs::path dir = tmp / "maps";
     const DemoResult r = RunDemo({}, 0);
     WriteDemoMaps(r, dir);
     for (const char* stem : {"elevation", "certainty", "truth", "filtered_cas", "filtered_cwm"}) {

@@ -11,6 +11,7 @@
 #include "casmap/io/image.hpp"
 #include "casmap/mapper/synthetic_map.hpp"
 #include "tests/input_error_of.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -19,12 +20,6 @@ namespace fs = std::filesystem;
 class FilterFile : public ::testing::Test {
 protected:
     void SetUp() override {
-        // One folder per test: ctest runs the tests of a fixture in parallel processes.
-        dir_ = fs::path(testing::TempDir()) /
-               (std::string("casmap_pipeline_filter_file_") +
-                testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
         mapper::SyntheticMapConfig config;
         config.rows = 60;
         config.cols = 50;
@@ -40,7 +35,9 @@ protected:
         o.out = (dir_ / "out.tiff").string();
         return o;
     }
-    fs::path dir_;
+    // One folder per test and per run (ctest may run tests and whole suites side by side).
+    const casmap::test::TempDir tmp_{"pipeline_filter_file"};
+    const fs::path dir_ = tmp_.Path();
     mapper::SyntheticMap map_;
 };
 

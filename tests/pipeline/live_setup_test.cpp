@@ -20,6 +20,7 @@
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/run_file.hpp"
 #include "tests/input_error_of.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -37,10 +38,11 @@ std::string FieldOfError(const LiveOptions& o) {
 }
 
 LiveOptions DeviceOptions(const std::string& device) {
+    static const fs::path dir = casmap::test::MakeTempDir("live_setup");
     LiveOptions o;
     o.device = device;
-    o.poses = (fs::path(testing::TempDir()) / "casmap_live_setup_poses.txt").string();
-    o.out = (fs::path(testing::TempDir()) / "casmap_live_setup_out").string();
+    o.poses = (dir / "casmap_live_setup_poses.txt").string();
+    o.out = (dir / "casmap_live_setup_out").string();
     return o;
 }
 

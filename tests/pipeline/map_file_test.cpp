@@ -14,6 +14,7 @@
 #include "casmap/core/lms200.hpp"
 #include "casmap/io/image.hpp"
 #include "casmap/io/run_file.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -53,12 +54,7 @@ io::RunData FloorRun() {
     return run;
 }
 
-fs::path FreshDir(const std::string& name) {
-    const fs::path dir = fs::path(testing::TempDir()) / ("casmap_map_file_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path FreshDir(const std::string& name) { return casmap::test::MakeTempDir("map_file_" + name); }
 
 TEST(MapRunFile, WritesTheMapsAndStoresThemInTheRun) {
     const fs::path dir = FreshDir("ok");

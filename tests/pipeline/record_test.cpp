@@ -14,6 +14,7 @@
 #include "casmap/drivers/virtual_lms200.hpp"
 #include "casmap/io/run_file.hpp"
 #include "tests/input_error_of.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -24,9 +25,8 @@ std::string FieldOfError(const RecordOptions& o) {
 }
 
 TEST(Record, ChecksNameTheOptionsFields) {
-    const fs::path dir = fs::path(testing::TempDir()) / "casmap_pipeline_record_checks";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const casmap::test::TempDir tmp("pipeline_record_checks");
+    const fs::path& dir = tmp.Path();
     RecordOptions o;
     o.device = "/nonexistent/lms";
     o.out = (dir / "run.h5").string();
@@ -51,9 +51,8 @@ TEST(Record, ChecksNameTheOptionsFields) {
 }
 
 TEST(Record, ReportsThenWritesWhatWasReceived) {
-    const fs::path dir = fs::path(testing::TempDir()) / "casmap_pipeline_record_run";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const casmap::test::TempDir tmp("pipeline_record_run");
+    const fs::path& dir = tmp.Path();
     drivers::testing::NumberedSource source;
     drivers::VirtualLms200Config vc;
     vc.link_path = "/tmp/casmap_pipeline_record_" + std::to_string(getpid());

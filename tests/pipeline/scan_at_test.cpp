@@ -11,13 +11,15 @@
 
 #include "casmap/core/input_error.hpp"
 #include "tests/input_error_of.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::pipeline {
 namespace {
 namespace fs = std::filesystem;
 
 fs::path WallScene() {
-    const fs::path path = fs::path(testing::TempDir()) / "casmap_pipeline_scan_at.yaml";
+    const fs::path path =
+        casmap::test::MakeTempDir("pipeline_scan_at") / "casmap_pipeline_scan_at.yaml";
     std::ofstream(path) << "objects:\n"
                            "  - name: wall\n"
                            "    box: {size_m: [1, 4, 2]}\n"
@@ -28,7 +30,8 @@ fs::path WallScene() {
 using test::ErrorOf;
 
 TEST(ScanSensorConfig, OverridesApplyOnlyWhenGiven) {
-    const fs::path file = fs::path(testing::TempDir()) / "casmap_pipeline_scan_at_lms.yaml";
+    const casmap::test::TempDir tmp("pipeline_scan_at");
+    const fs::path file = tmp / "casmap_pipeline_scan_at_lms.yaml";
     std::ofstream(file) << "range_mode_m: 16\nrange_units: cm\n";
     ScanSensorOptions o;
     o.sensor = file.string();

@@ -18,6 +18,7 @@
 #include "casmap/drivers/pose_file.hpp"
 #include "casmap/io/run_file.hpp"
 #include "casmap/pipeline/record.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -62,9 +63,8 @@ TEST(Serve, ChecksNameTheOptionsFields) {
 }
 
 TEST(Serve, AServedRunIsRecordedBackWithItsPoses) {
-    const fs::path dir = fs::path(testing::TempDir()) / "casmap_pipeline_serve";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const casmap::test::TempDir tmp("pipeline_serve");
+    const fs::path& dir = tmp.Path();
     io::RunData run;
     std::vector<core::TimedPose> poses;
     for (int i = 0; i < 40; ++i) {

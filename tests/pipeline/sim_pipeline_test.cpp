@@ -19,6 +19,7 @@
 #include "casmap/pipeline/data_dir.hpp"
 #include "casmap/pipeline/map_run.hpp"
 #include "casmap/sim/simulator.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -99,7 +100,7 @@ double Up(double v) { return std::nextafter(v, std::numeric_limits<double>::infi
 
 std::string WriteTemp(const std::string& name, const YAML::Node& node) {
     const std::filesystem::path path =
-        std::filesystem::path(testing::TempDir()) / ("casmap_effective_" + name + ".yaml");
+        casmap::test::MakeTempDir("effective") / ("casmap_effective_" + name + ".yaml");
     YAML::Emitter out;
     out << node;
     std::ofstream(path) << out.c_str() << "\n";

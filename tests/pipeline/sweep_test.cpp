@@ -14,6 +14,7 @@
 
 #include "casmap/core/input_error.hpp"
 #include "casmap/pipeline/map_run.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -404,10 +405,8 @@ TEST(RunSweep, RunCacheGivesTheUncachedResultByteForByte) {
 }
 
 TEST(RunSweepToFolder, WritesTheOutputsAndTheJsonCopyOnRankZero) {
-    const std::filesystem::path dir =
-        std::filesystem::path(testing::TempDir()) / "casmap_pipeline_sweep_folder";
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
+    const casmap::test::TempDir tmp("pipeline_sweep_folder");
+    const std::filesystem::path& dir = tmp.Path();
     SweepOptions options;
     options.axes = {{"A", {6.0, 12.0}}};
     options.courses = {4};

@@ -11,6 +11,7 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/io/image.hpp"
 #include "casmap/io/scene_file.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -19,12 +20,6 @@ namespace fs = std::filesystem;
 class TruthFile : public ::testing::Test {
 protected:
     void SetUp() override {
-        // One folder per test: ctest runs the tests of a fixture in parallel processes.
-        dir_ = fs::path(testing::TempDir()) /
-               (std::string("casmap_pipeline_truth_file_") +
-                testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
         std::ofstream(dir_ / "scene.yaml") << "objects:\n"
                                               "  - name: block\n"
                                               "    box: {size_m: [0.4, 0.4, 0.3]}\n"
@@ -34,7 +29,9 @@ protected:
         options_.out = (dir_ / "t.tiff").string();
         options_.png = (dir_ / "t.png").string();
     }
-    fs::path dir_;
+    // One folder per test and per run (ctest may run tests and whole suites side by side).
+    const casmap::test::TempDir tmp_{"pipeline_truth_file"};
+    const fs::path dir_ = tmp_.Path();
     TruthFileOptions options_;
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 
-// A fresh temporary folder per test, removed afterwards.
+// A fresh temporary folder per test (unique, removed when the test process exits).
 
 #include <gtest/gtest.h>
 
@@ -8,16 +8,13 @@
 #include <fstream>
 #include <string>
 
+#include "tests/temp_dir.hpp"
+
 namespace casmap::view::test {
 
 inline std::filesystem::path FreshDir(const std::string& name) {
-    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() /
-        ("casmap_view_" + name + "_" + info->test_suite_name() + "_" + info->name());
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    return std::filesystem::canonical(dir);
+    // Unique per call (mkdtemp): two test runs at once never share it; removed at exit.
+    return std::filesystem::canonical(casmap::test::MakeTempDir("view_" + name));
 }
 
 inline void WriteText(const std::filesystem::path& path, const std::string& text) {
