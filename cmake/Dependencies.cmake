@@ -13,7 +13,7 @@ if(NOT TARGET casmap::hdf5)
     target_compile_definitions(casmap::hdf5 INTERFACE ${HDF5_DEFINITIONS})
     # libdeflate (optional, Debian libdeflate-dev): io compresses the chunks of the noisy datasets
     # it writes with it (about twice as fast as zlib) into the zlib stream HDF5's deflate filter
-    # reads, and takes Adler-32 from it (io/hdf5_util.cpp, io/deflate_stream.cpp). Part of this
+    # reads, and takes Adler-32 from it (io/hdf5_chunk_writer.cpp, io/deflate_stream.cpp). Part of this
     # wrapper: only the HDF5 writer uses it.
     find_path(CASMAP_LIBDEFLATE_INCLUDE_DIR libdeflate.h)
     find_library(CASMAP_LIBDEFLATE_LIBRARY deflate)
