@@ -2,7 +2,6 @@
 
 #include <unistd.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -10,7 +9,6 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "casmap/core/check.hpp"
@@ -21,6 +19,7 @@
 #include "casmap/io/output_set.hpp"
 #include "casmap/io/run_file.hpp"
 #include "casmap/io/yaml_emit.hpp"
+#include "casmap/pipeline/connect_retry.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -71,44 +70,6 @@ void RecordOptions::Validate() const {
 }
 
 namespace {
-
-/// True for errors worth retrying at start-up: the device is absent or vanished, or no LMS
-/// answered (yet). A path that exists but is no terminal, or a refused setting, is final.
-bool Transient(const std::string& device, const std::exception& e) {
-    if (dynamic_cast<const drivers::SerialError*>(&e) != nullptr) {
-        return true;
-    }
-    std::error_code ec;
-    return !fs::exists(device, ec);
-}
-
-/// Connects, retrying with back-off (0.1 s doubling to 1 s) until `timeout_s` has passed.
-int ConnectWithRetry(drivers::Lms200Driver& driver,
-                     const RecordOptions& opt,
-                     const std::function<bool()>& stop) {
-    const Clock::time_point start = Clock::now();
-    double backoff_s = 0.1;
-    for (int attempt = 1;; ++attempt) {
-        try {
-            driver.Connect();
-            return attempt;
-        } catch (const std::exception& e) {
-            const double elapsed_s = std::chrono::duration<double>(Clock::now() - start).count();
-            if (!Transient(opt.device, e) || (stop && stop()) ||
-                elapsed_s + backoff_s > opt.timeout_s) {
-                if (!Transient(opt.device, e)) {
-                    throw;
-                }
-                throw MakeInputError(
-                    opt.device, "device", opt.device,
-                    "no LMS 200 ready within timeout_s " + core::FormatNumber(opt.timeout_s) +
-                        " s (" + std::to_string(attempt) + " attempts; last: " + e.what() + ")");
-            }
-            std::this_thread::sleep_for(std::chrono::duration<double>(backoff_s));
-            backoff_s = std::min(1.0, 2.0 * backoff_s);
-        }
-    }
-}
 
 std::string ConfigYaml(const RecordOptions& opt, const drivers::Lms200Driver& driver) {
     const drivers::DeviceInfo& d = driver.info();
@@ -197,7 +158,8 @@ void Record(const RecordOptions& opt,
     opt.Validate();
     io::RunData run;
     drivers::Lms200Driver driver(DriverConfigOf(opt));
-    const int attempts = ConnectWithRetry(driver, opt, stop_requested);
+    const int attempts = ConnectWithRetry(opt.device, opt.timeout_s,
+                                          DeviceConnectSteps(driver, opt.device, stop_requested));
     drivers::PartialScanAssembler assembler(driver.info().variant);
     const bool partial = driver.info().output.kind == drivers::OutputKind::kPartial;
     const Clock::time_point start = Clock::now();
