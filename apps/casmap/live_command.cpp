@@ -6,7 +6,8 @@
 //             [--set NAME=VALUE]... [--view [--port P] [--host H]]
 // Live mapping with the paper's active window: flags -> pipeline::LiveOptions ->
 // MakeLiveSetup + RunLive (pipeline/live_setup.hpp). Prints a status line on a terminal
-// (nothing otherwise) and one JSON line of counters at the end.
+// (nothing otherwise) and one JSON line of counters at the end; on stderr at start-up, the
+// bound port of a UDP pose socket (what `udp:0` chose) and the --view address.
 #include <unistd.h>
 
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include "apps/casmap/flag_names.hpp"
 #include "apps/casmap/stop_signals.hpp"
 #include "casmap/core/parallel.hpp"
+#include "casmap/drivers/pose_stream.hpp"
 #include "casmap/pipeline/live_setup.hpp"
 #ifdef CASMAP_WITH_VIEW
 #include "apps/casmap/view_start.hpp"
@@ -59,6 +61,12 @@ void RunLiveCommand(LiveFlags& f, const CommonOptions& common) {
             setup = pipeline::MakeLiveSetup(f.options, core::ResolveThreads(common.threads));
         });
     });
+    // The port is bound by now: a publisher started with `udp:0` learns it from this line.
+    if (const auto* socket = dynamic_cast<const drivers::PoseSocket*>(setup.poses.get());
+        socket != nullptr && socket->port() != 0) {
+        std::fprintf(stderr, "casmap live: poses on udp:%d\n", socket->port());
+        std::fflush(stderr);
+    }
 #ifdef CASMAP_WITH_VIEW
     std::unique_ptr<view::Server> server;  // the live page, while mapping; address on stderr
     if (f.view) {

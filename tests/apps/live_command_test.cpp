@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -229,12 +230,42 @@ TEST_F(LiveCommand, AScannerThatStopsEndsWithEverythingWritten) {
     EXPECT_EQ(static_cast<double>(io::ReadRunFile(out() / "run.h5").scans.size()), scans);
 }
 
+/// The port `casmap live` names on stderr ("casmap live: poses on udp:PORT") once its pose
+/// socket is bound; 0 if `finished` comes first or 10 s pass.
+int PosesPortOf(const fs::path& stderr_file, const std::atomic<bool>& finished) {
+    const std::string key = "casmap live: poses on udp:";
+    for (int i = 0; i < 1000; ++i) {
+        const std::string text = test::ReadText(stderr_file);
+        const std::size_t at = text.find(key);
+        const std::size_t eol = at == std::string::npos ? at : text.find('\n', at);
+        if (eol != std::string::npos) {
+            return std::stoi(text.substr(at + key.size(), eol - at - key.size()));
+        }
+        if (finished) {
+            return 0;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return 0;
+}
+
 TEST_F(LiveCommand, TakesPosesFromAUdpSocket) {
     Serve("");
-    const int port = 20000 + static_cast<int>(getpid() % 20000);
-    // A pose publisher: once serve has written its pose file, send its records over UDP in
-    // datagrams of 50 lines, as a robot's localisation would.
-    std::thread publisher([this, port] {
+    // `udp:0`: live binds a port the system chooses and names it on stderr, so test runs at
+    // the same time never share a port (and no port is probed, freed, then bound again).
+    const fs::path live_stderr = dir_ / "live_stderr.txt";
+    std::atomic<bool> finished = false;
+    Result r;
+    std::thread live([&] {
+        r = test::Shell("{ " + std::string(CASMAP_EXE) + " live --device " + link().string() +
+                        " --baud 500000 --poses-socket udp:0 --scans 120 --timeout 10 --out " +
+                        out().string() + WindowFlags() + " 2>" + live_stderr.string() + "; }");
+        finished = true;
+    });
+    const int port = PosesPortOf(live_stderr, finished);
+    if (port > 0) {
+        // A pose publisher: once serve has written its pose file, send its records over UDP in
+        // datagrams of 50 lines, as a robot's localisation would.
         for (int i = 0; i < 500 && !fs::exists(poses()); ++i) {
             std::this_thread::sleep_for(std::chrono::milliseconds(10));
         }
@@ -263,12 +294,11 @@ TEST_F(LiveCommand, TakesPosesFromAUdpSocket) {
         }
         send();
         ::close(fd);
-    });
-    const Result r = Casmap("live --device " + link().string() +
-                            " --baud 500000 --poses-socket udp:" + std::to_string(port) +
-                            " --scans 120 --timeout 10 --out " + out().string() + WindowFlags());
-    publisher.join();
-    ASSERT_EQ(r.code, 0) << r.output;
+    }
+    live.join();
+    const std::string errors = test::ReadText(live_stderr);
+    ASSERT_GT(port, 0) << r.output << errors;
+    ASSERT_EQ(r.code, 0) << r.output << errors;
     EXPECT_EQ(JsonNumber(r.output, "scans_mapped"), 120) << r.output;
     EXPECT_GT(JsonNumber(r.output, "poses"), 1000) << r.output;
 }
