@@ -70,6 +70,11 @@ std::vector<Setting> Settings() {
         s.sweep_config.depression_share = share;
         out.push_back(s);
     }
+    for (const int reach : {2, 3}) {
+        Setting s{"sweep_jump reach=" + std::to_string(reach), Kind::kSweepJump};
+        s.sweep_config.reach = reach;
+        out.push_back(s);
+    }
     for (const double margin : {0.03, 0.07}) {
         Setting s{"sweep_jump margin_m=" + std::to_string(margin).substr(0, 4), Kind::kSweepJump};
         s.sweep_config.margin_m = margin;

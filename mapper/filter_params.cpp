@@ -226,6 +226,8 @@ const std::map<std::string, Setter, std::less<>>& Setters() {
          [](FilterParams& p, auto n, auto v) {
              p.sweep_jump.depression_share = ParseRange(n, v, 0, 1, false);
          }},
+        {"sweep_jump.reach",
+         [](FilterParams& p, auto n, auto v) { p.sweep_jump.reach = ParseInt(n, v, 1, 3); }},
         {"kalman.range_sigma_m",
          [](FilterParams& p, auto n, auto v) {
              p.kalman.range_sigma_m = ParseRange(n, v, 0, kInf, false);

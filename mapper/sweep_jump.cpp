@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <numbers>
 #include <optional>
 
@@ -67,31 +68,32 @@ double MedianGap(std::span<const core::Scan> scans) {
     return *mid;
 }
 
-// A neighbour scan counts only with the same beam grid and no dropped scan in between: at
-// most 1.5 median gaps away (a recorded run may lose telegrams; two scans apart, the sensor
-// has moved twice as far and a surface's own depth change can look like a jump).
-bool UsableNeighbour(const core::Scan& scan, const core::Scan& neighbour, double max_gap_s) {
-    return SameGeometry(scan, neighbour) && std::abs(neighbour.stamp_s - scan.stamp_s) <= max_gap_s;
+// A neighbour scan `step` scans away counts only with the same beam grid and no dropped scan in
+// between: at most step + 0.5 median gaps away (a recorded run may lose telegrams; one scan
+// further, the sensor has moved further and a surface's own depth change can look like a jump).
+bool UsableNeighbour(const core::Scan& scan,
+                     const core::Scan& neighbour,
+                     std::size_t step,
+                     double median_gap_s) {
+    return SameGeometry(scan, neighbour) && std::abs(neighbour.stamp_s - scan.stamp_s) <=
+                                                (static_cast<double>(step) + 0.5) * median_gap_s;
 }
 
-// Labels of the middle scan `cur` from its neighbours (either may be null: keep all).
-std::vector<std::uint8_t> Labels(const WorldBeams* before,
+// Labels of the middle scan `cur` from two neighbour scans, one before and one after it.
+std::vector<std::uint8_t> Labels(const WorldBeams& before,
                                  const WorldBeams& cur,
-                                 const WorldBeams* after,
+                                 const WorldBeams& after,
                                  const SweepJumpConfig& config) {
     std::vector<std::uint8_t> keep(cur.valid.size(), 1);
-    if (before == nullptr || after == nullptr) {
-        return keep;
-    }
     const double cos_max = std::cos(config.max_angle_deg * std::numbers::pi / 180.0);
     for (std::size_t i = 0; i < keep.size(); ++i) {
-        if (!cur.valid[i] || !before->valid[i] || !after->valid[i]) {
+        if (!cur.valid[i] || !before.valid[i] || !after.valid[i]) {
             continue;
         }
         const Eigen::Vector3d& o = cur.origin[i];
         const Eigen::Vector3d& d = cur.direction[i];
-        const Eigen::Vector3d p0 = before->origin[i] + before->range[i] * before->direction[i];
-        const Eigen::Vector3d p1 = after->origin[i] + after->range[i] * after->direction[i];
+        const Eigen::Vector3d p0 = before.origin[i] + before.range[i] * before.direction[i];
+        const Eigen::Vector3d p1 = after.origin[i] + after.range[i] * after.direction[i];
         const double depth0 = (p0 - o).dot(d);
         const double depth1 = (p1 - o).dot(d);
         const double near = std::min(depth0, depth1);
@@ -131,6 +133,7 @@ void SweepJumpConfig::Validate() const {
     check.That(
         std::isfinite(depression_share) && depression_share >= 0.0 && depression_share <= 1.0,
         "sweep_jump.depression_share", depression_share, "allowed: 0..1 (0: off)");
+    check.That(reach >= 1 && reach <= 3, "sweep_jump.reach", reach, "allowed: 1, 2 or 3");
 }
 
 std::vector<std::vector<std::uint8_t>> SweepJumpLabels(std::span<const core::Scan> scans,
@@ -141,22 +144,35 @@ std::vector<std::vector<std::uint8_t>> SweepJumpLabels(std::span<const core::Sca
     if (scans.empty()) {
         return labels;
     }
-    const double max_gap_s = 1.5 * MedianGap(scans);
-    // A window of three scans' world beams, each computed once.
-    std::optional<WorldBeams> before;
-    WorldBeams cur = ToWorld(scans[0], world_T_sensor);
-    for (std::size_t k = 0; k < scans.size(); ++k) {
-        std::optional<WorldBeams> after;
-        if (k + 1 < scans.size()) {
-            after = ToWorld(scans[k + 1], world_T_sensor);
+    const double median_gap_s = MedianGap(scans);
+    const auto reach = static_cast<std::size_t>(config.reach);
+    // A sliding window of world beams, scans [first, first + window.size()), each computed once.
+    std::deque<WorldBeams> window;
+    std::size_t first = 0;
+    const auto world = [&](std::size_t j) -> const WorldBeams& {
+        while (first + window.size() <= j) {
+            window.push_back(ToWorld(scans[first + window.size()], world_T_sensor));
         }
-        const bool use_before = before && UsableNeighbour(scans[k], scans[k - 1], max_gap_s);
-        const bool use_after = after && UsableNeighbour(scans[k], scans[k + 1], max_gap_s);
-        labels[k] =
-            Labels(use_before ? &*before : nullptr, cur, use_after ? &*after : nullptr, config);
-        if (after) {
-            before = std::move(cur);
-            cur = std::move(*after);
+        return window[j - first];
+    };
+    for (std::size_t k = 0; k < scans.size(); ++k) {
+        while (first + reach < k) {
+            window.pop_front();
+            ++first;
+        }
+        const WorldBeams& cur = world(k);
+        labels[k].assign(cur.valid.size(), 1);
+        for (std::size_t step = 1; step <= reach; ++step) {
+            if (k < step || k + step >= scans.size() ||
+                !UsableNeighbour(scans[k], scans[k - step], step, median_gap_s) ||
+                !UsableNeighbour(scans[k], scans[k + step], step, median_gap_s)) {
+                continue;
+            }
+            const std::vector<std::uint8_t> keep =
+                Labels(world(k - step), world(k), world(k + step), config);
+            for (std::size_t i = 0; i < keep.size(); ++i) {
+                labels[k][i] &= keep[i];
+            }
         }
     }
     return labels;

@@ -37,14 +37,19 @@ struct SweepJumpConfig {
     double max_angle_deg = 10.0;     // chord within this angle of the line of sight
     double depression_share = 0.35;  // ... and within this share of the beam's depression
                                      // below the horizon (0: no such limit)
+    int reach = 1;                   // also test with scans k -/+ 2 .. k -/+ reach as the
+                                     // neighbours (1..3): a mixed return repeated in consecutive
+                                     // scans (a slow sweep over an edge) has mixed neighbours
     void Validate() const;           // throws InputError naming the field ("sweep_jump.<field>")
 };
 
 /// Keep labels (1 keep, 0 reject) for every beam of every scan of a run, in scan order. Beams
 /// with status != kOk, without a pose at their time, and the first and last scan's beams are
 /// kept; a neighbour scan with another beam count, start angle or angle step, or more than 1.5
-/// median scan gaps away in time (a dropped scan between), counts as missing. Deterministic: each
-/// label depends only on the three scans and the trajectory.
+/// median scan gaps away in time (a dropped scan between), counts as missing. With reach r > 1
+/// the test runs again with scans k - s and k + s as the neighbours for s = 2 .. r (each at most
+/// s + 0.5 median gaps away) and a beam any of them rejects is rejected. Deterministic: each
+/// label depends only on the 2 reach + 1 scans around it and the trajectory.
 [[nodiscard]] std::vector<std::vector<std::uint8_t>> SweepJumpLabels(
     std::span<const core::Scan> scans,
     const core::Trajectory& world_T_sensor,

@@ -157,6 +157,7 @@ std::string FilterParamsYaml(const mapper::FilterParams& p) {
     io::EmitNumber(out, "margin_m", p.sweep_jump.margin_m);
     io::EmitNumber(out, "max_angle_deg", p.sweep_jump.max_angle_deg);
     io::EmitNumber(out, "depression_share", p.sweep_jump.depression_share);
+    io::EmitNumber(out, "reach", p.sweep_jump.reach);
     out << YAML::EndMap;
     out << YAML::Key << "kalman" << YAML::Value << YAML::Flow << YAML::BeginMap;
     io::EmitNumber(out, "range_sigma_m", p.kalman.range_sigma_m);

@@ -107,6 +107,7 @@ std::string StageKey(const PipelineSpec& spec, const mapper::FilterParams& p) {
         put(p.sweep_jump.margin_m);
         put(p.sweep_jump.max_angle_deg);
         put(p.sweep_jump.depression_share);
+        put(p.sweep_jump.reach);
     }
     if (spec.mode == MapperMode::kKalman) {
         const mapper::KalmanNoiseConfig& k = p.kalman;

@@ -354,6 +354,7 @@ std::string MapConfigYaml(const std::string& run_path,
         io::EmitNumber(out, "margin_m", st.sweep_jump.margin_m);
         io::EmitNumber(out, "max_angle_deg", st.sweep_jump.max_angle_deg);
         io::EmitNumber(out, "depression_share", st.sweep_jump.depression_share);
+        io::EmitNumber(out, "reach", st.sweep_jump.reach);
         out << YAML::EndMap;
     }
     if (st.mode == MapperMode::kKalman) {

@@ -205,9 +205,9 @@ const std::vector<std::string>& SweepableParameters() {
         "shadow.min_angle_deg", "shadow.max_angle_deg", "shadow.window", "shadow.neighbors",
         "range_jump.jump_min_m", "range_jump.margin_m", "range_jump.chord_tol_m",
         "sweep_jump.jump_min_m", "sweep_jump.margin_m", "sweep_jump.max_angle_deg",
-        "sweep_jump.depression_share", "kalman.range_sigma_m", "kalman.beam_constant_m",
-        "kalman.beam_angle_rad", "kalman.min_variance_m2", "kalman.mahalanobis_gate",
-        "kalman.multi_height_noise_m2"};
+        "sweep_jump.depression_share", "sweep_jump.reach", "kalman.range_sigma_m",
+        "kalman.beam_constant_m", "kalman.beam_angle_rad", "kalman.min_variance_m2",
+        "kalman.mahalanobis_gate", "kalman.multi_height_noise_m2"};
     return names;
 }
 

@@ -63,9 +63,11 @@ TEST(FilterParams, SetsEveryNamedParameter) {
     p.Set("sweep_jump.jump_min_m", "0.2");
     p.Set("sweep_jump.margin_m", "0.1");
     p.Set("sweep_jump.max_angle_deg", "7.5");
+    p.Set("sweep_jump.reach", "2");
     EXPECT_EQ(p.sweep_jump.jump_min_m, 0.2);
     EXPECT_EQ(p.sweep_jump.margin_m, 0.1);
     EXPECT_EQ(p.sweep_jump.max_angle_deg, 7.5);
+    EXPECT_EQ(p.sweep_jump.reach, 2);
     p.Set("edge_spill_c", "6");
     p.Set("edge_spill_drop_m", "0.02");
     p.Set("edge_spill", "0.25");
@@ -75,7 +77,7 @@ TEST(FilterParams, SetsEveryNamedParameter) {
     p.Set("nan_median_mix", "0.5");
     EXPECT_EQ(p.cas.nan_median_mix, 0.5);
     EXPECT_NO_THROW(p.Validate());
-    EXPECT_EQ(FilterParams::Names().size(), 54U);  // 36 filter + 18 mapping-stage names
+    EXPECT_EQ(FilterParams::Names().size(), 55U);  // 36 filter + 19 mapping-stage names
 }
 
 TEST(FilterParams, SetsTheWaveTwoOptions) {
@@ -177,7 +179,8 @@ TEST(FilterParams, SetsThePreFilterAndKalmanParameters) {
           "shadow.max_angle_deg=180", "shadow.window=0", "shadow.window=11", "shadow.neighbors=-1",
           "shadow.window=1.5", "shadow.remove_start_point=yes", "range_jump.jump_min_m=0",
           "range_jump.margin_m=-0.01", "range_jump.chord_tol_m=x", "kalman.range_sigma_m=-1",
-          "kalman.min_variance_m2=0", "kalman.mahalanobis_gate=0", "kalman.beam_angle_rad=inf"}) {
+          "kalman.min_variance_m2=0", "kalman.mahalanobis_gate=0", "kalman.beam_angle_rad=inf",
+          "sweep_jump.reach=0", "sweep_jump.reach=4", "sweep_jump.reach=1.5"}) {
         const std::string name = std::string(bad).substr(0, std::string(bad).find('='));
         FilterParams q;
         try {

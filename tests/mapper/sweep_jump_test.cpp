@@ -52,13 +52,18 @@ struct SweepRun {
     std::set<std::pair<int, int>> mixed;  // (scan, beam) given a mixed range
 };
 
-// `count` scans; with_box: the box top ends at kBoxEndXM and the first beam of each column
-// to reach the floor past it returns halfway between the top's plane and the floor (a mixed
-// pixel), for beams in [mixed_from, mixed_to].
-SweepRun MakeRun(int count, bool with_box, double roll_per_scan_rad, int mixed_from, int mixed_to) {
+// `count` scans; with_box: the box top ends at kBoxEndXM and the first `mixed_scans` beams of
+// each column to reach the floor past it return halfway between the top's plane and the floor
+// (mixed pixels), for beams in [mixed_from, mixed_to].
+SweepRun MakeRun(int count,
+                 bool with_box,
+                 double roll_per_scan_rad,
+                 int mixed_from,
+                 int mixed_to,
+                 int mixed_scans = 1) {
     SweepRun run;
     std::vector<core::TimedPose> samples;
-    std::vector<bool> crossed(kBeams, false);
+    std::vector<int> crossed(kBeams, 0);
     for (int k = 0; k < count; ++k) {
         samples.push_back({k * kScanPeriodS, PoseAt(k, roll_per_scan_rad)});
         core::Scan scan;
@@ -75,8 +80,8 @@ SweepRun MakeRun(int count, bool with_box, double roll_per_scan_rad, int mixed_f
                 const double top = ToPlane(o, d, kBoxTopM);
                 const bool on_top = top > 0.0 && (o + top * d).x() < kBoxEndXM;
                 range = on_top ? top : floor;
-                if (!on_top && !crossed[static_cast<std::size_t>(i)] && k > 0) {
-                    crossed[static_cast<std::size_t>(i)] = true;
+                if (!on_top && crossed[static_cast<std::size_t>(i)] < mixed_scans && k > 0) {
+                    ++crossed[static_cast<std::size_t>(i)];
                     if (i >= mixed_from && i <= mixed_to) {
                         range = 0.5 * (top + floor);
                         run.mixed.insert({k, i});
@@ -113,6 +118,23 @@ TEST(SweepJump, RejectsExactlyTheMixedPixelsAtABoxsFarEdge) {
     const auto keep = SweepJumpLabels(run.scans, run.poses, {});
     ASSERT_EQ(keep.size(), run.scans.size());
     EXPECT_EQ(Rejected(keep), run.mixed);
+}
+
+TEST(SweepJump, ReachTwoRejectsMixedPixelsRepeatedInTwoScans) {
+    // A slower sweep over the edge: two consecutive scans of each column return mixed ranges, so
+    // each mixed return has a mixed neighbour and reach 1 cannot bracket it; scans k -/+ 2 can.
+    const SweepRun run = MakeRun(200, true, 0.0, 60, 120, 2);
+    ASSERT_EQ(run.mixed.size(), 2U * 61U);
+    EXPECT_TRUE(Rejected(SweepJumpLabels(run.scans, run.poses, {})).empty());
+    SweepJumpConfig two;
+    two.reach = 2;
+    EXPECT_EQ(Rejected(SweepJumpLabels(run.scans, run.poses, two)), run.mixed);
+    // Reach 2 adds no rejection where reach 1 already finds them all, nor at a clean edge.
+    const SweepRun single = MakeRun(200, true, 0.0, 60, 120);
+    EXPECT_EQ(Rejected(SweepJumpLabels(single.scans, single.poses, two)), single.mixed);
+    const SweepRun clean = MakeRun(200, true, 0.0, 1, 0);
+    two.reach = 3;
+    EXPECT_TRUE(Rejected(SweepJumpLabels(clean.scans, clean.poses, two)).empty());
 }
 
 TEST(SweepJump, KeepsTheSameEdgeWithoutMixedPixels) {
@@ -286,6 +308,11 @@ TEST(SweepJump, ValidatesEveryFieldByName) {
     c = {};
     c.depression_share = 1.5;
     fails(c, "sweep_jump.depression_share");
+    c = {};
+    c.reach = 0;
+    fails(c, "sweep_jump.reach");
+    c.reach = 4;
+    fails(c, "sweep_jump.reach");
     c = {};
     c.margin_m = 0.05;  // exactly jump_min_m / 2: allowed
     EXPECT_NO_THROW(c.Validate());

@@ -42,7 +42,7 @@ TEST(BenchStage, SweepJumpSectionMapsItsPipelineAgain) {
     // The run's config lists the shared values, and the section's under its pipeline.
     const std::string& config = own.run_configs[0];
     EXPECT_NE(config.find("sweep_jump: {jump_min_m: 0.1, margin_m: 0.05, max_angle_deg: 10, "
-                          "depression_share: 0.35}"),
+                          "depression_share: 0.35, reach: 1}"),
               std::string::npos)
         << config;
     EXPECT_NE(config.find("sweep_jump_median: [sweep_jump.max_angle_deg=2.5]"), std::string::npos)
