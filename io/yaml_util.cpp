@@ -21,8 +21,10 @@ std::string Where(const std::string& file, const YAML::Node& node) {
 namespace {
 
 // Walks the loaded tree once: counts nodes (an alias counts each time it is used, so an alias
-// bomb stops at the limit instead of expanding), bounds the depth and rejects duplicate keys,
-// which yaml-cpp would otherwise resolve silently to the first one.
+// bomb stops at the limit instead of expanding), bounds the depth, rejects a map key that is not
+// a plain scalar (`? [a, b]`, `? {a: 1}`, an empty `?`: no casmap file has one, and every reader
+// takes keys as strings) and rejects duplicate keys, which yaml-cpp would otherwise resolve
+// silently to the first one.
 class TreeCheck {
 public:
     explicit TreeCheck(const std::string& file) : file_(file) {}
@@ -46,7 +48,14 @@ public:
             std::set<std::string> keys;
             for (const auto& entry : node) {
                 Visit(entry.first, depth + 1);
-                if (entry.first.IsScalar() && !keys.insert(entry.first.Scalar()).second) {
+                if (!entry.first.IsScalar()) {
+                    const char* kind = entry.first.IsSequence() ? "<sequence>"
+                                       : entry.first.IsMap()    ? "<map>"
+                                                                : "<empty>";
+                    throw MakeInputError(Where(file_, entry.first), "yaml key", kind,
+                                         "map keys must be plain names");
+                }
+                if (!keys.insert(entry.first.Scalar()).second) {
                     throw MakeInputError(Where(file_, entry.first), entry.first.Scalar(), "",
                                          "duplicate key");
                 }

@@ -18,7 +18,8 @@ namespace casmap::io {
 [[nodiscard]] std::string Where(const std::string& file, const YAML::Node& node);
 
 /// Loads a YAML file; throws InputError for a missing file, a syntax error (with line:col), a
-/// duplicate key, or a file beyond the limits of core/limits.hpp (size, nodes, depth).
+/// map key that is not a plain scalar, a duplicate key, or a file beyond the limits of
+/// core/limits.hpp (size, nodes, depth).
 [[nodiscard]] YAML::Node LoadYamlFile(const std::string& file);
 
 /// LoadYamlFile on text already in memory; `file` names it in messages.

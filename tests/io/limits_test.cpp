@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "casmap/core/input_error.hpp"
@@ -185,6 +186,23 @@ TEST(Limits, YamlDuplicateKeysAreRejected) {
     const std::string message =
         ErrorOf([] { (void)LoadYamlText("a: 1\nb: 2\na: 3\n", "dup.yaml"); });
     EXPECT_THAT(message, HasSubstr("dup.yaml:3:1: a (duplicate key)"));
+}
+
+// Complex keys (found by rig_yaml_fuzz: `?` then a sequence made the rig reader's key.as<string>()
+// throw a yaml-cpp conversion error past every InputError handler) are rejected on load, for
+// every YAML file casmap reads.
+TEST(Limits, YamlKeysMustBePlainNames) {
+    for (const auto& [text, where, kind] :
+         {std::tuple{"? [a, b]\n: 1\n", "keys.yaml:1:3", "<sequence>"},
+          std::tuple{"top:\n  ? {a: 1}\n  : 2\n", "keys.yaml:2:5", "<map>"},
+          std::tuple{"?\n: 3\n", "keys.yaml", "<empty>"}}) {
+        const std::string message = ErrorOf([&] { (void)LoadYamlText(text, "keys.yaml"); });
+        EXPECT_THAT(message, HasSubstr(std::string("yaml key = ") + kind +
+                                       " (map keys must be plain names)"))
+            << text;
+        EXPECT_THAT(message, HasSubstr(where)) << text;
+    }
+    EXPECT_NO_THROW((void)LoadYamlText("a: 1\n'quoted key': 2\n3: 4\n", "keys.yaml"));
 }
 
 TEST(Limits, YamlAliasBombStopsQuicklyWithAShortMessage) {
