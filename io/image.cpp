@@ -70,6 +70,7 @@ public:
             throw Error("TIFF header: directory entries", count, "more than the file holds");
         }
         std::uint64_t tags[4] = {0, 0, 0, 0};  // width 256, length 257, tile w 322, tile l 323
+        bool seen[4] = {false, false, false, false};
         for (std::uint64_t i = 0; i < count; ++i) {
             const std::uint64_t e = first + i * entry_bytes;
             const std::uint64_t tag = Get(e, 2);
@@ -81,6 +82,12 @@ public:
                                                      : 0;
             const int slot = tag == 256 ? 0 : tag == 257 ? 1 : tag == 322 ? 2 : tag == 323 ? 3 : -1;
             if (slot >= 0) {
+                // A directory lists each tag once; with two, libtiff sizes the image by one and
+                // this check would read the other (tiff_map_fuzz, session 8: 65283 x 12090).
+                if (seen[slot]) {
+                    throw Error("TIFF header: tag", tag, "given twice in the first directory");
+                }
+                seen[slot] = true;
                 tags[slot] = value;
             }
         }

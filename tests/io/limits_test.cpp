@@ -171,6 +171,21 @@ TEST(Limits, TiffHeaderDeclaringTenGigapixelsIsRejectedNamingTheFile) {
     EXPECT_THAT(message, HasSubstr("pixel limit 25000000"));
 }
 
+// tiff_map_fuzz (session 8): a second width tag of 4 after a first of 65283. libtiff sized the
+// image by the first (a 3.2 GB allocation) while the header check kept the second.
+TEST(Limits, TiffWithASizeTagGivenTwiceIsRejected) {
+    std::string bytes = TiffHeader(65283, 12090);
+    // Entry 7 (RowsPerStrip) becomes a second ImageWidth of 4: tag 256, type LONG, value 4.
+    const std::size_t entry = 8 + 2 + 12 * 7;
+    bytes[entry] = '\x00';
+    bytes[entry + 1] = '\x01';
+    bytes[entry + 8] = '\x04';
+    const std::string message = ErrorOf([&] { (void)DecodeMapTiff(bytes, "twice.tiff"); });
+    EXPECT_THAT(
+        message,
+        HasSubstr("twice.tiff: TIFF header: tag = 256 (given twice in the first directory)"));
+}
+
 TEST(Limits, TiffWithADirectoryBeyondTheFileIsRejected) {
     std::string bytes = TiffHeader(2, 2);
     bytes[4] = '\x7f';  // first directory at 0x007f007f, far beyond the 210 bytes
