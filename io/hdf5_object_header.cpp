@@ -58,12 +58,89 @@ std::optional<Superblock> ReadSuperblock(std::uint64_t file_size, const ReadAt& 
     return s;
 }
 
+// A dataspace as H5O__sdspace_decode reads it: version 1 or 2, rank (at most 32), flags (bit 0:
+// maximum sizes follow), then version 2 a type byte (2: null, no elements), version 1 five
+// reserved bytes; then `rank` sizes and, with the flag, `rank` maxima of `lengths` bytes each.
+// The number of elements is the product of the sizes.
+struct Extent {
+    std::uint64_t need = 0;      // bytes the decoder reads
+    std::uint64_t elements = 0;  // UINT64_MAX: more than 2^64 - 1
+};
+
+std::optional<Extent> DecodeExtent(const std::uint8_t* p, std::uint64_t size, std::size_t lengths) {
+    constexpr std::uint8_t kMaxRank = 32;       // H5S_MAX_RANK
+    constexpr std::uint8_t kNullDataspace = 2;  // version 2 type byte
+    constexpr std::uint8_t kMaximaPresent = 1;  // flags
+    if (size < 4 || p[0] < 1 || p[0] > 2 || p[1] > kMaxRank) {
+        return std::nullopt;  // HDF5 rejects the version or rank before it reads sizes
+    }
+    const std::uint8_t rank = p[1];
+    Extent e;
+    e.need =
+        (p[0] == 1 ? 8 : 4) + std::uint64_t{rank} * lengths * ((p[2] & kMaximaPresent) ? 2 : 1);
+    if (e.need > size) {
+        return e;
+    }
+    const std::uint8_t* dims = p + (p[0] == 1 ? 8 : 4);
+    e.elements = p[0] == 2 && p[3] == kNullDataspace ? 0 : 1;
+    for (std::uint8_t k = 0; k < rank && e.elements != 0; ++k) {
+        const std::uint64_t n = Decode(dims + std::size_t{k} * lengths, lengths);
+        e.elements = n != 0 && e.elements > UINT64_MAX / n ? UINT64_MAX : e.elements * n;
+    }
+    return e;
+}
+
+// The attribute's value, which H5O_attr_decode copies with memcpy (datatype size times the
+// dataspace's elements) from the bytes after the dataspace without comparing that size with the
+// message's (fuzz finding, docs/fuzzing.md). A datatype or dataspace that is shared (attribute
+// message flags, versions 2-3) is stored elsewhere and not checked here.
+struct Parts {
+    const std::uint8_t* datatype = nullptr;
+    std::uint64_t datatype_bytes = 0;
+    const std::uint8_t* dataspace = nullptr;
+    std::uint64_t dataspace_bytes = 0;
+    std::uint64_t left = 0;  // the message's bytes after the dataspace (and its padding)
+};
+
+std::optional<std::string> CheckValue(const Parts& parts,
+                                      const Superblock& sb,
+                                      const std::string& what) {
+    constexpr std::uint64_t kDatatypeHeaderBytes = 8;  // class and version 4, size 4
+    constexpr std::uint8_t kVariableLength = 9;        // datatype class
+    const std::optional<Extent> extent =
+        DecodeExtent(parts.dataspace, parts.dataspace_bytes, sb.lengths);
+    if (!extent) {
+        return std::nullopt;
+    }
+    if (extent->need > parts.dataspace_bytes) {
+        return what + ": its dataspace needs " + std::to_string(extent->need) +
+               " bytes for its rank but has " + std::to_string(parts.dataspace_bytes);
+    }
+    if (parts.datatype_bytes < kDatatypeHeaderBytes) {
+        return what + ": its datatype of " + std::to_string(parts.datatype_bytes) +
+               " bytes is shorter than a datatype's 8-byte header";
+    }
+    std::uint64_t element = Decode(parts.datatype + 4, 4);
+    if ((parts.datatype[0] & 0x0FU) == kVariableLength) {  // HDF5 may size it for the file
+        element = std::max<std::uint64_t>(element, 4 + sb.offsets + 4);
+    }
+    const bool huge = extent->elements != 0 && element > UINT64_MAX / extent->elements;
+    if (huge || element * extent->elements > parts.left) {
+        return what + ": its value of " + std::to_string(extent->elements) + " element(s) of " +
+               std::to_string(element) + " bytes does not fit the " + std::to_string(parts.left) +
+               " bytes after its dataspace";
+    }
+    return std::nullopt;
+}
+
 // An attribute message (versions 1-3) as H5O_attr_decode reads it: version, flags, the sizes of
 // name (NUL included), datatype and dataspace, [encoding, version 3], then the three parts,
-// each padded to 8 bytes in version 1.
+// each padded to 8 bytes in version 1, then the value.
 std::optional<std::string> CheckAttribute(const std::uint8_t* data,
                                           std::uint64_t size,
-                                          std::uint64_t where) {
+                                          std::uint64_t where,
+                                          const Superblock& sb) {
+    constexpr std::uint8_t kSharedParts = 0x03;  // flags: datatype (1), dataspace (2) shared
     const std::string what = "attribute message " + At(where);
     if (size < 8) {
         return what + " is shorter than its 8-byte header";
@@ -76,9 +153,8 @@ std::optional<std::string> CheckAttribute(const std::uint8_t* data,
     const std::uint64_t datatype = Decode(data + 4, 2);
     const std::uint64_t dataspace = Decode(data + 6, 2);
     const std::uint64_t header = version == 3 ? 9 : 8;
-    const std::uint64_t need = version == 1
-                                   ? header + Align8(name) + Align8(datatype) + Align8(dataspace)
-                                   : header + name + datatype + dataspace;
+    const auto pad = [&](std::uint64_t n) { return version == 1 ? Align8(n) : n; };
+    const std::uint64_t need = header + pad(name) + pad(datatype) + pad(dataspace);
     if (name == 0 || need > size) {
         return what + ": name " + std::to_string(name) + ", datatype " + std::to_string(datatype) +
                " and dataspace " + std::to_string(dataspace) + " bytes do not fit its " +
@@ -88,7 +164,11 @@ std::optional<std::string> CheckAttribute(const std::uint8_t* data,
         return what + ": the name is not NUL-terminated within its " + std::to_string(name) +
                " bytes";
     }
-    return std::nullopt;
+    if (version >= 2 && (data[1] & kSharedParts) != 0) {
+        return std::nullopt;
+    }
+    const std::uint8_t* type = data + header + pad(name);
+    return CheckValue({type, datatype, type + pad(datatype), dataspace, size - need}, sb, what);
 }
 
 struct Block {
@@ -145,7 +225,7 @@ std::optional<std::string> FindCorruptAttributeMessages(std::uint64_t address,
             }
             if (type == kAttributeMessage && (flags & kMessageShared) == 0) {
                 if (std::optional<std::string> why =
-                        CheckAttribute(&bytes[data], size, block.at + pos)) {
+                        CheckAttribute(&bytes[data], size, block.at + pos, *sb)) {
                     return why;
                 }
             } else if (type == kContinuationMessage && size >= sb->offsets + sb->lengths) {

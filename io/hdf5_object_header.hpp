@@ -3,7 +3,9 @@
 // A check of the attribute messages in an HDF5 object header, from the file's bytes, before
 // HDF5 decodes them (io/hdf5_util.cpp). HDF5 1.10.8 copies an attribute's name with strdup
 // (H5O_attr_decode) without checking that a NUL ends it inside the message, so a header whose
-// name runs on reads past the end of HDF5's buffer (fuzz finding, docs/fuzzing.md). Version 2
+// name runs on reads past the end of HDF5's buffer, and copies the attribute's value (datatype
+// size times the dataspace's elements) without comparing its size with the message's (fuzz
+// findings, docs/fuzzing.md). Version 2
 // object headers ("OHDR") carry a checksum HDF5 verifies before decoding anything, so only
 // version 1 headers (the HDF5 1.6 format, which casmap wrote before format 3 and h5py writes by
 // default) need the check.
@@ -23,10 +25,12 @@ inline constexpr int kMaxHeaderContinuations = 64;
 /// Walks the object header at `address` (from the superblock, which must be at byte 0; as
 /// H5Oget_info reports it) the way HDF5 lays it out: the first chunk and each continuation
 /// block. Returns the reason the first bad attribute message or block gives (its name is not
-/// NUL-terminated inside the message, or name, datatype and dataspace do not fit the message;
-/// a block outside the file; more than kMaxHeaderContinuations blocks), or nullopt when every
-/// attribute message is sound. A version 2 header (checksummed) is accepted as it is; a
-/// superblock that cannot be read at byte 0 is reported.
+/// NUL-terminated inside the message; name, datatype and dataspace do not fit the message; the
+/// dataspace is shorter than its rank needs or the datatype than its 8-byte header; the value
+/// does not fit the bytes after the dataspace; a block outside the file; more than
+/// kMaxHeaderContinuations blocks), or nullopt when every attribute message is sound. A
+/// version 2 header (checksummed) is accepted as it is; a superblock that cannot be read at
+/// byte 0 is reported.
 [[nodiscard]] std::optional<std::string> FindCorruptAttributeMessages(std::uint64_t address,
                                                                       std::uint64_t file_size,
                                                                       const ReadAt& read);

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -24,6 +26,18 @@ using test::SmallRun;
 namespace fs = std::filesystem;
 
 const fs::path kSource = CASMAP_SOURCE_DIR;
+
+/// Runs /usr/bin/python3 (Debian's, with h5py) on `script`; returns its exit status.
+int RunPython(const fs::path& dir, const std::string& script, std::string* out) {
+    const fs::path py = dir / "writer.py";
+    std::ofstream(py) << script;
+    FILE* pipe = popen(("/usr/bin/python3 " + py.string() + " 2>&1").c_str(), "r");
+    std::array<char, 4096> buffer{};
+    while (pipe != nullptr && fgets(buffer.data(), buffer.size(), pipe) != nullptr) {
+        *out += buffer.data();
+    }
+    return pipe != nullptr ? pclose(pipe) : -1;
+}
 
 std::string WrittenRun() {
     const casmap::test::TempDir dir("run_attribute");
@@ -85,6 +99,111 @@ TEST(RunFileAttributes, TheFuzzersOverreadInputsAreInputErrors) {
                   std::string::npos)
             << file << ": " << ReadError(bytes);
     }
+}
+
+// Where the datatype of the version 1 attribute message whose name starts at `at` starts: the
+// name is padded to 8 bytes.
+std::size_t AttributeDatatype(const std::string& bytes, std::size_t at) {
+    const auto name_bytes = static_cast<std::size_t>(static_cast<unsigned char>(bytes[at - 6]));
+    return at + (name_bytes + 7) / 8 * 8;
+}
+
+TEST(RunFileAttributes, AValueLargerThanItsMessageIsAnInputError) {
+    // HDF5 1.10.8 copies datatype size x elements bytes after the dataspace, whatever the
+    // message's size (fuzz finding). A written file with its datatype size raised to 4096:
+    std::string bytes = WrittenRun();
+    const std::size_t at = AttributeName(bytes, "range_mode");
+    const std::size_t type = AttributeDatatype(bytes, at);
+    bytes[type + 4] = 0;
+    bytes[type + 5] = 0x10;
+    bytes[type + 6] = 0;
+    bytes[type + 7] = 0;
+    const std::string error = ReadError(bytes);
+    EXPECT_NE(error.find("/scans"), std::string::npos) << error;
+    EXPECT_NE(error.find("attribute message at byte " + std::to_string(at - 16)), std::string::npos)
+        << error;
+    EXPECT_NE(error.find("value of 1 element(s) of 4096 bytes does not fit the"), std::string::npos)
+        << error;
+}
+
+TEST(RunFileAttributes, ADataspaceShorterThanItsRankIsAnInputError) {
+    std::string bytes = WrittenRun();
+    const std::size_t at = AttributeName(bytes, "range_mode");
+    const auto type_bytes = static_cast<std::size_t>(static_cast<unsigned char>(bytes[at - 4]));
+    const std::size_t space = AttributeDatatype(bytes, at) + (type_bytes + 7) / 8 * 8;
+    ASSERT_EQ(static_cast<unsigned char>(bytes[space]), 1U) << "not a version 1 dataspace";
+    bytes[space + 1] = 32;  // rank 32: 256 bytes of sizes
+    const std::string error = ReadError(bytes);
+    EXPECT_NE(error.find("its dataspace needs 264 bytes for its rank but has"), std::string::npos)
+        << error;
+}
+
+TEST(RunFileAttributes, TheFuzzersValueOverreadInputIsAnInputError) {
+    // The root's casmap_run_format_version (in a continuation block at byte 800): an integer
+    // of 44 bytes with 8 bytes left in the message.
+    const std::string bytes =
+        ReadBytes(kSource / "tests/data/fuzz/run_file/regress_attribute_value_overread.h5");
+    ASSERT_FALSE(bytes.empty());
+    EXPECT_EQ(ReadError(bytes),
+              "run.h5: / (corrupt file: attribute message at byte 824: its value of 1 "
+              "element(s) of 44 bytes does not fit the 8 bytes after its dataspace)");
+}
+
+// Valid files from another writer pass the walk: h5py (HDF5 1.10.8) with every kind of
+// attribute value (scalars, arrays, fixed and variable-length strings, a null dataspace,
+// compound, enum, variable-length sequences, a committed datatype, a large value, enough
+// attributes for continuation blocks), in the 1.6 format (version 1 headers, walked) and the
+// latest (version 2, checksummed).
+TEST(RunFileAttributes, FilesWrittenByH5pyPass) {
+    const casmap::test::TempDir dir("run_attribute_h5py");
+    std::string out;
+    const int rc = RunPython(dir.Path(),
+                             R"PY(
+import h5py, numpy as np
+def attrs(o, f):
+    o.attrs["i"] = np.int64(7)
+    o.attrs["b"] = True
+    o.attrs["c"] = 1 + 2j
+    o.attrs["grid"] = np.arange(12, dtype=np.float32).reshape(3, 4)
+    o.attrs["bytes"] = np.arange(300, dtype=np.uint8)
+    o.attrs["fixed"] = np.bytes_("fixed text")
+    o.attrs["text"] = "variable-length text"
+    o.attrs["texts"] = ["a", "bc", "def"]
+    o.attrs["empty"] = h5py.Empty("f8")
+    o.attrs["pair"] = np.array([(1, 2.5), (3, 4.5)], dtype=[("a", "i4"), ("b", "f8")])
+    o.attrs.create("enum", [0, 1, 1], dtype=h5py.enum_dtype({"A": 0, "B": 1}, basetype="i1"))
+    seqs = np.empty(2, dtype=object); seqs[0] = np.arange(3); seqs[1] = np.arange(5)
+    o.attrs.create("seqs", seqs, dtype=h5py.vlen_dtype(np.int64))
+    o.attrs.create("committed", np.ones(4, np.float32), dtype=f["t"])
+    o.attrs["large"] = np.zeros(6000, np.float64)
+    for k in range(40):
+        o.attrs["n%02d" % k] = np.full(k + 1, k, np.int16)
+for libver in ["earliest", "latest"]:
+    with h5py.File(")PY" + dir.Path().string() +
+                                 R"PY(/" + libver + ".h5", "w", libver=libver) as f:
+        f["t"] = np.dtype("f4")
+        f["scans/stamp_s"] = np.array([0.0, 1 / 75])
+        f["scans/ranges_m"] = np.full((2, 181), 2.0, np.float32)
+        f["scans/raw"] = np.full((2, 181), 2000, np.uint16)
+        f["scans/status"] = np.zeros((2, 181), np.uint8)
+        f["poses/stamp_s"] = np.array([0.0, 1.0])
+        f["poses/xyz_m"] = np.zeros((2, 3))
+        f["poses/quat_xyzw"] = np.array([[0, 0, 0, 1.0], [0, 0, 0, 1.0]])
+        attrs(f, f)
+        attrs(f["scans"], f)
+        f["scans"].attrs["start_angle_rad"] = -np.pi / 2
+        f["scans"].attrs["angle_step_rad"] = np.pi / 180
+        f["scans"].attrs["beam_period_s"] = 1 / 75 / 360
+)PY",
+                             &out);
+    ASSERT_EQ(rc, 0) << out;
+    for (const char* file : {"earliest.h5", "latest.h5"}) {
+        const std::string bytes = ReadBytes(dir / file);
+        EXPECT_EQ(ReadError(bytes), "") << file;
+    }
+    // The 1.6 format's root group header is version 1, so the walk read it.
+    const std::string bytes = ReadBytes(dir / "earliest.h5");
+    EXPECT_EQ(bytes.find("OHDR"), std::string::npos);
 }
 
 TEST(RunFileAttributes, VersionTwoHeadersAreLeftToTheirChecksum) {
