@@ -12,11 +12,13 @@
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/output_set.hpp"
 #include "casmap/io/yaml_emit.hpp"
+#include "casmap/mapper/stage_params.hpp"
 #include "casmap/pipeline/bench_maps.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
 #include "casmap/pipeline/bench_wire.hpp"
 #include "casmap/pipeline/distributed.hpp"
 #include "casmap/pipeline/preset.hpp"
+#include "casmap/pipeline/stage_yaml.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -140,33 +142,10 @@ std::string FilterParamsYaml(const mapper::FilterParams& p) {
     out << YAML::Key << "center_weight" << YAML::Value << p.baseline.center_weight;
     out << YAML::EndMap;
     // The mapping stages' parameters (used only by the pipelines that run the stage).
-    out << YAML::Key << "shadow" << YAML::Value << YAML::Flow << YAML::BeginMap;
-    io::EmitNumber(out, "min_angle_deg", p.shadow.min_angle_deg);
-    io::EmitNumber(out, "max_angle_deg", p.shadow.max_angle_deg);
-    out << YAML::Key << "window" << YAML::Value << p.shadow.window;
-    out << YAML::Key << "neighbors" << YAML::Value << p.shadow.neighbors;
-    out << YAML::Key << "remove_start_point" << YAML::Value << OnOff(p.shadow.remove_start_point);
-    out << YAML::EndMap;
-    out << YAML::Key << "range_jump" << YAML::Value << YAML::Flow << YAML::BeginMap;
-    io::EmitNumber(out, "jump_min_m", p.range_jump.jump_min_m);
-    io::EmitNumber(out, "margin_m", p.range_jump.margin_m);
-    io::EmitNumber(out, "chord_tol_m", p.range_jump.chord_tol_m);
-    out << YAML::EndMap;
-    out << YAML::Key << "sweep_jump" << YAML::Value << YAML::Flow << YAML::BeginMap;
-    io::EmitNumber(out, "jump_min_m", p.sweep_jump.jump_min_m);
-    io::EmitNumber(out, "margin_m", p.sweep_jump.margin_m);
-    io::EmitNumber(out, "max_angle_deg", p.sweep_jump.max_angle_deg);
-    io::EmitNumber(out, "depression_share", p.sweep_jump.depression_share);
-    io::EmitNumber(out, "reach", p.sweep_jump.reach);
-    out << YAML::EndMap;
-    out << YAML::Key << "kalman" << YAML::Value << YAML::Flow << YAML::BeginMap;
-    io::EmitNumber(out, "range_sigma_m", p.kalman.range_sigma_m);
-    io::EmitNumber(out, "beam_constant_m", p.kalman.beam_constant_m);
-    io::EmitNumber(out, "beam_angle_rad", p.kalman.beam_angle_rad);
-    io::EmitNumber(out, "min_variance_m2", p.kalman.min_variance_m2);
-    io::EmitNumber(out, "mahalanobis_gate", p.kalman.mahalanobis_gate);
-    io::EmitNumber(out, "multi_height_noise_m2", p.kalman.multi_height_noise_m2);
-    out << YAML::EndMap << YAML::EndMap << YAML::EndMap;
+    for (const mapper::StageSection& section : mapper::StageSections(p)) {
+        detail::EmitStageSection(out, section);
+    }
+    out << YAML::EndMap << YAML::EndMap;
     return io::EmittedText(out);
 }
 

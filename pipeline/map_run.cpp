@@ -12,6 +12,8 @@
 #include "casmap/io/image.hpp"
 #include "casmap/io/yaml_emit.hpp"
 #include "casmap/mapper/kalman_mapper.hpp"
+#include "casmap/mapper/stage_params.hpp"
+#include "casmap/pipeline/stage_yaml.hpp"
 
 namespace casmap::pipeline {
 
@@ -91,6 +93,20 @@ void MapSettings::Validate() const {
     kalman.Validate();
 }
 
+namespace {
+
+/// The mapping-stage parameters of `settings` in a FilterParams (the rest at defaults).
+mapper::FilterParams StageParamsOf(const MapSettings& settings) {
+    mapper::FilterParams params;
+    params.shadow = settings.shadow;
+    params.range_jump = settings.range_jump;
+    params.sweep_jump = settings.sweep_jump;
+    params.kalman = settings.kalman;
+    return params;
+}
+
+}  // namespace
+
 void SetStageParams(MapSettings& settings, const mapper::FilterParams& params) {
     settings.shadow = params.shadow;
     settings.range_jump = params.range_jump;
@@ -103,14 +119,17 @@ bool IsStageParameter(std::string_view name) {
            name.starts_with("sweep_jump.") || name.starts_with("kalman.");
 }
 
+bool RunsStage(MapperMode mode, Prefilter prefilter, std::string_view stage) {
+    if (stage == "kalman") {
+        return mode == MapperMode::kKalman;
+    }
+    return prefilter != Prefilter::kNone && stage == ToString(prefilter);
+}
+
 void ApplyStageSettings(MapSettings& settings,
                         const std::vector<std::string>& assignments,
                         const std::string& field) {
-    mapper::FilterParams params;
-    params.shadow = settings.shadow;
-    params.range_jump = settings.range_jump;
-    params.sweep_jump = settings.sweep_jump;
-    params.kalman = settings.kalman;
+    mapper::FilterParams params = StageParamsOf(settings);
     for (const std::string& a : assignments) {
         const std::size_t eq = a.find('=');
         if (eq == std::string::npos || eq == 0) {
@@ -123,12 +142,7 @@ void ApplyStageSettings(MapSettings& settings,
                                  "range_jump.<field>, sweep_jump.<field>, kalman.<field> (map "
                                  "filters' parameters belong to casmap filter / bench)");
         }
-        const bool used =
-            name.starts_with("shadow.")       ? settings.prefilter == Prefilter::kShadow
-            : name.starts_with("range_jump.") ? settings.prefilter == Prefilter::kRangeJump
-            : name.starts_with("sweep_jump.") ? settings.prefilter == Prefilter::kSweepJump
-                                              : settings.mode == MapperMode::kKalman;
-        if (!used) {
+        if (!RunsStage(settings.mode, settings.prefilter, name.substr(0, name.find('.')))) {
             throw MakeInputError("", field, a,
                                  name.starts_with("kalman.")
                                      ? "the Kalman mapper's parameter, but the mapper mode is " +
@@ -331,41 +345,10 @@ std::string MapConfigYaml(const std::string& run_path,
     io::EmitNumber(out, "delta_l_m", mapped.config.delta_l_m);
     io::EmitNumber(out, "scan_period_s", mapped.config.scan_period_s);
     const MapSettings& st = mapped.settings;
-    if (st.prefilter == Prefilter::kShadow) {
-        out << YAML::Key << "shadow" << YAML::Value << YAML::BeginMap;
-        io::EmitNumber(out, "min_angle_deg", st.shadow.min_angle_deg);
-        io::EmitNumber(out, "max_angle_deg", st.shadow.max_angle_deg);
-        out << YAML::Key << "window" << YAML::Value << st.shadow.window;
-        out << YAML::Key << "neighbors" << YAML::Value << st.shadow.neighbors;
-        out << YAML::Key << "remove_start_point" << YAML::Value
-            << (st.shadow.remove_start_point ? "on" : "off");
-        out << YAML::EndMap;
-    }
-    if (st.prefilter == Prefilter::kRangeJump) {
-        out << YAML::Key << "range_jump" << YAML::Value << YAML::BeginMap;
-        io::EmitNumber(out, "jump_min_m", st.range_jump.jump_min_m);
-        io::EmitNumber(out, "margin_m", st.range_jump.margin_m);
-        io::EmitNumber(out, "chord_tol_m", st.range_jump.chord_tol_m);
-        out << YAML::EndMap;
-    }
-    if (st.prefilter == Prefilter::kSweepJump) {
-        out << YAML::Key << "sweep_jump" << YAML::Value << YAML::BeginMap;
-        io::EmitNumber(out, "jump_min_m", st.sweep_jump.jump_min_m);
-        io::EmitNumber(out, "margin_m", st.sweep_jump.margin_m);
-        io::EmitNumber(out, "max_angle_deg", st.sweep_jump.max_angle_deg);
-        io::EmitNumber(out, "depression_share", st.sweep_jump.depression_share);
-        io::EmitNumber(out, "reach", st.sweep_jump.reach);
-        out << YAML::EndMap;
-    }
-    if (st.mode == MapperMode::kKalman) {
-        out << YAML::Key << "kalman" << YAML::Value << YAML::BeginMap;
-        io::EmitNumber(out, "range_sigma_m", st.kalman.range_sigma_m);
-        io::EmitNumber(out, "beam_constant_m", st.kalman.beam_constant_m);
-        io::EmitNumber(out, "beam_angle_rad", st.kalman.beam_angle_rad);
-        io::EmitNumber(out, "min_variance_m2", st.kalman.min_variance_m2);
-        io::EmitNumber(out, "mahalanobis_gate", st.kalman.mahalanobis_gate);
-        io::EmitNumber(out, "multi_height_noise_m2", st.kalman.multi_height_noise_m2);
-        out << YAML::EndMap;
+    for (const mapper::StageSection& section : mapper::StageSections(StageParamsOf(st))) {
+        if (RunsStage(st.mode, st.prefilter, section.stage)) {
+            detail::EmitStageSection(out, section);
+        }
     }
     out << YAML::EndMap;
     out << YAML::Key << "stats" << YAML::Value << YAML::Flow << YAML::BeginMap;

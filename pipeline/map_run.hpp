@@ -63,6 +63,11 @@ void SetStageParams(MapSettings& settings, const mapper::FilterParams& params);
 /// or kalman.).
 [[nodiscard]] bool IsStageParameter(std::string_view name);
 
+/// True when a mapper in `mode` with `prefilter` runs the mapping stage `stage` (a section of
+/// mapper::StageSections): "shadow", "range_jump", "sweep_jump" when that is the pre-filter,
+/// "kalman" in the Kalman mode.
+[[nodiscard]] bool RunsStage(MapperMode mode, Prefilter prefilter, std::string_view stage);
+
 /// Applies NAME=VALUE assignments (FilterParams::Set's names and ranges) of mapping-stage
 /// parameters to `settings`, then validates. Throws InputError naming `field` for an
 /// assignment that is not NAME=VALUE, a parameter that is not a stage's (a map filter's
