@@ -11,6 +11,7 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/mapper/filters.hpp"
 #include "casmap/mapper/metrics.hpp"
+#include "casmap/mapper/stage_params.hpp"
 #include "casmap/pipeline/bench_pipelines.hpp"
 #include "casmap/pipeline/bench_runner.hpp"
 
@@ -87,34 +88,20 @@ std::vector<std::string> KeptPoles(const core::MapF& map, const std::vector<Pole
     return kept;
 }
 
-/// The mapping-stage parameters a pipeline's map depends on, as exact bytes ("" for the paper
-/// mapper without pre-filter): two pipelines with equal keys share one map.
+/// The mapping-stage parameters a pipeline's map depends on: the sections of the stages it
+/// runs (mapper/stage_params.hpp; "" for the paper mapper without pre-filter). Two pipelines
+/// with equal keys share one map; FormatNumber's texts are equal exactly when the numbers are.
 std::string StageKey(const PipelineSpec& spec, const mapper::FilterParams& p) {
     std::string key;
-    const auto put = [&key](double v) { key.append(reinterpret_cast<const char*>(&v), sizeof v); };
-    if (spec.prefilter == Prefilter::kShadow) {
-        put(p.shadow.min_angle_deg);
-        put(p.shadow.max_angle_deg);
-        put(p.shadow.window);
-        put(p.shadow.neighbors);
-        put(p.shadow.remove_start_point ? 1.0 : 0.0);
-    } else if (spec.prefilter == Prefilter::kRangeJump) {
-        put(p.range_jump.jump_min_m);
-        put(p.range_jump.margin_m);
-        put(p.range_jump.chord_tol_m);
-    } else if (spec.prefilter == Prefilter::kSweepJump) {
-        put(p.sweep_jump.jump_min_m);
-        put(p.sweep_jump.margin_m);
-        put(p.sweep_jump.max_angle_deg);
-        put(p.sweep_jump.depression_share);
-        put(p.sweep_jump.reach);
-    }
-    if (spec.mode == MapperMode::kKalman) {
-        const mapper::KalmanNoiseConfig& k = p.kalman;
-        for (const double v : {k.range_sigma_m, k.beam_constant_m, k.beam_angle_rad,
-                               k.min_variance_m2, k.mahalanobis_gate, k.multi_height_noise_m2}) {
-            put(v);
+    for (const mapper::StageSection& section : mapper::StageSections(p)) {
+        if (!RunsStage(spec.mode, spec.prefilter, section.stage)) {
+            continue;
         }
+        key += section.stage;
+        for (const mapper::StageParam& param : section.params) {
+            key += " " + param.key + "=" + param.value;
+        }
+        key += ";";
     }
     return key;
 }
