@@ -60,7 +60,7 @@ struct HitBatch {
 };
 
 /// An Embree 3 scene built from a core::Scene (boxes and cylinders tessellated or as exact
-/// geometry, meshes as triangles). The only place Embree appears is world.cpp.
+/// geometry, meshes as triangles). Embree appears only in world*.cpp and the private world_*.hpp.
 /// Thread-safe for concurrent casts after construction.
 class World {
 public:
