@@ -2,11 +2,10 @@
 // never-observed cells, the weighted median's samples) are in docs/paper-notes.md.
 //
 // Speed: window statistics are separable sums and maxima over plain float rows (the compiler
-// vectorises them); the weighted median of the Fig. 5 skeleton is mapper/skeleton_median.cpp. Every
-// pixel's result depends only on the unfiltered input, in a fixed order of operations: the output
-// is deterministic.
+// vectorises them; mapper/cas_window_stats.cpp); the weighted median of the Fig. 5 skeleton is
+// mapper/skeleton_median.cpp. Every pixel's result depends only on the unfiltered input, in a fixed
+// order of operations: the output is deterministic.
 #include <algorithm>
-#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -18,190 +17,14 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/mapper/cas_row_k2.hpp"
 #include "casmap/mapper/cas_variants.hpp"
+#include "casmap/mapper/cas_window_stats.hpp"
 #include "casmap/mapper/filters.hpp"
 #include "casmap/mapper/skeleton_median.hpp"
-
-// The hot row loops are compiled twice, for AVX2 and the baseline, and picked at load time
-// (GCC function multi-versioning). Both run the same element-wise operations in the same
-// order (no FMA, no reassociation), so the output is identical on every x86-64 machine.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define CASMAP_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define CASMAP_VECTOR_CLONES
-#endif
 
 namespace casmap::mapper {
 namespace {
 
-// Window statistics of one output row, per column j in [k, cols - k).
-struct RowStats {
-    std::vector<float> col_c, col_h, col_max;  // vertical (2k+1) sum / sum / max
-    std::vector<float> win_c, win_h, win_max;  // the whole window
-    explicit RowStats(std::size_t n)
-        : col_c(n), col_h(n), col_max(n), win_c(n), win_h(n), win_max(n) {}
-};
-
-void ColumnSum(const float* src, std::size_t stride, int span, std::size_t n, float* dst) {
-    float* __restrict d = dst;
-    std::memcpy(d, src, n * sizeof(float));
-    for (int r = 1; r < span; ++r) {
-        const float* __restrict row = src + static_cast<std::size_t>(r) * stride;
-        for (std::size_t j = 0; j < n; ++j) {
-            d[j] += row[j];
-        }
-    }
-}
-
-void ColumnMax(const float* src, std::size_t stride, int span, std::size_t n, float* dst) {
-    float* __restrict d = dst;
-    std::memcpy(d, src, n * sizeof(float));
-    for (int r = 1; r < span; ++r) {
-        const float* __restrict row = src + static_cast<std::size_t>(r) * stride;
-        for (std::size_t j = 0; j < n; ++j) {
-            d[j] = row[j] > d[j] ? row[j] : d[j];
-        }
-    }
-}
-
-void WindowSum(const float* src, int k, std::size_t n, float* dst) {
-    const std::size_t w = n - 2 * static_cast<std::size_t>(k);  // outputs k .. n-k-1
-    float* __restrict d = dst + k;
-    std::memcpy(d, src, w * sizeof(float));
-    for (int s = 1; s <= 2 * k; ++s) {
-        const float* __restrict in = src + s;
-        for (std::size_t j = 0; j < w; ++j) {
-            d[j] += in[j];
-        }
-    }
-}
-
-void WindowMax(const float* src, int k, std::size_t n, float* dst) {
-    const std::size_t w = n - 2 * static_cast<std::size_t>(k);
-    float* __restrict d = dst + k;
-    std::memcpy(d, src, w * sizeof(float));
-    for (int s = 1; s <= 2 * k; ++s) {
-        const float* __restrict in = src + s;
-        for (std::size_t j = 0; j < w; ++j) {
-            d[j] = in[j] > d[j] ? in[j] : d[j];
-        }
-    }
-}
-
-// k = 2, fused: each column's five values are read once and the three statistics kept in
-// registers. Same order of additions as the generic path, so the same bits.
-CASMAP_VECTOR_CLONES void ColumnStatsK2(
-    const float* abs_h, const float* c, std::size_t cols, int top, RowStats& s) {
-    const std::size_t off = static_cast<std::size_t>(top) * cols;
-    const float* __restrict h0 = abs_h + off;
-    const float* __restrict h1 = h0 + cols;
-    const float* __restrict h2 = h1 + cols;
-    const float* __restrict h3 = h2 + cols;
-    const float* __restrict h4 = h3 + cols;
-    const float* __restrict c0 = c + off;
-    const float* __restrict c1 = c0 + cols;
-    const float* __restrict c2 = c1 + cols;
-    const float* __restrict c3 = c2 + cols;
-    const float* __restrict c4 = c3 + cols;
-    float* __restrict sc = s.col_c.data();
-    float* __restrict sh = s.col_h.data();
-    float* __restrict sm = s.col_max.data();
-    for (std::size_t j = 0; j < cols; ++j) {
-        sc[j] = (((c0[j] + c1[j]) + c2[j]) + c3[j]) + c4[j];
-    }
-    for (std::size_t j = 0; j < cols; ++j) {
-        sh[j] = (((h0[j] + h1[j]) + h2[j]) + h3[j]) + h4[j];
-    }
-    for (std::size_t j = 0; j < cols; ++j) {
-        float m = h0[j];
-        m = h1[j] > m ? h1[j] : m;
-        m = h2[j] > m ? h2[j] : m;
-        m = h3[j] > m ? h3[j] : m;
-        m = h4[j] > m ? h4[j] : m;
-        sm[j] = m;
-    }
-}
-
-// The fused path's column statistics straight from the signed heights: |h| is taken on the
-// fly (exact, so the same bits as ColumnStatsK2 on a precomputed |h| map), which saves the
-// pass that wrote the |h| map.
-CASMAP_VECTOR_CLONES void ColumnStatsK2Signed(
-    const float* h, const float* c, std::size_t cols, int top, RowStats& s) {
-    const std::size_t off = static_cast<std::size_t>(top) * cols;
-    const float* __restrict h0 = h + off;
-    const float* __restrict h1 = h0 + cols;
-    const float* __restrict h2 = h1 + cols;
-    const float* __restrict h3 = h2 + cols;
-    const float* __restrict h4 = h3 + cols;
-    const float* __restrict c0 = c + off;
-    const float* __restrict c1 = c0 + cols;
-    const float* __restrict c2 = c1 + cols;
-    const float* __restrict c3 = c2 + cols;
-    const float* __restrict c4 = c3 + cols;
-    float* __restrict sc = s.col_c.data();
-    float* __restrict sh = s.col_h.data();
-    float* __restrict sm = s.col_max.data();
-    for (std::size_t j = 0; j < cols; ++j) {
-        sc[j] = (((c0[j] + c1[j]) + c2[j]) + c3[j]) + c4[j];
-    }
-    for (std::size_t j = 0; j < cols; ++j) {
-        sh[j] = (((std::abs(h0[j]) + std::abs(h1[j])) + std::abs(h2[j])) + std::abs(h3[j])) +
-                std::abs(h4[j]);
-    }
-    for (std::size_t j = 0; j < cols; ++j) {
-        float m = std::abs(h0[j]);
-        const float a1 = std::abs(h1[j]);
-        const float a2 = std::abs(h2[j]);
-        const float a3 = std::abs(h3[j]);
-        const float a4 = std::abs(h4[j]);
-        m = a1 > m ? a1 : m;
-        m = a2 > m ? a2 : m;
-        m = a3 > m ? a3 : m;
-        m = a4 > m ? a4 : m;
-        sm[j] = m;
-    }
-}
-
-CASMAP_VECTOR_CLONES void RowStatsK2(
-    const float* abs_h, const float* c, std::size_t cols, int top, RowStats& s) {
-    ColumnStatsK2(abs_h, c, cols, top, s);
-    const float* __restrict sc = s.col_c.data();
-    const float* __restrict sh = s.col_h.data();
-    const float* __restrict sm = s.col_max.data();
-    float* __restrict wc = s.win_c.data() + 2;
-    float* __restrict wh = s.win_h.data() + 2;
-    float* __restrict wm = s.win_max.data() + 2;
-    const std::size_t n = cols - 4;
-    for (std::size_t j = 0; j < n; ++j) {
-        wc[j] = (((sc[j] + sc[j + 1]) + sc[j + 2]) + sc[j + 3]) + sc[j + 4];
-    }
-    for (std::size_t j = 0; j < n; ++j) {
-        wh[j] = (((sh[j] + sh[j + 1]) + sh[j + 2]) + sh[j + 3]) + sh[j + 4];
-    }
-    for (std::size_t j = 0; j < n; ++j) {
-        float m = sm[j];
-        m = sm[j + 1] > m ? sm[j + 1] : m;
-        m = sm[j + 2] > m ? sm[j + 2] : m;
-        m = sm[j + 3] > m ? sm[j + 3] : m;
-        m = sm[j + 4] > m ? sm[j + 4] : m;
-        wm[j] = m;
-    }
-}
-
-void ComputeRowStats(
-    const float* abs_h, const float* c, std::size_t cols, int top, int k, RowStats& s) {
-    if (k == 2) {
-        RowStatsK2(abs_h, c, cols, top, s);
-        return;
-    }
-    const int span = 2 * k + 1;
-    const std::size_t off = static_cast<std::size_t>(top) * cols;
-    ColumnSum(c + off, cols, span, cols, s.col_c.data());
-    ColumnSum(abs_h + off, cols, span, cols, s.col_h.data());
-    ColumnMax(abs_h + off, cols, span, cols, s.col_max.data());
-    WindowSum(s.col_c.data(), k, cols, s.win_c.data());
-    WindowSum(s.col_h.data(), k, cols, s.win_h.data());
-    WindowMax(s.col_max.data(), k, cols, s.win_max.data());
-}
+using detail::RowStats;
 
 // Population variance of x / norm over the window, by brute force (the optional forms).
 float NormalisedVariance(const float* x, std::size_t cols, std::size_t idx, int k, float norm) {
@@ -237,14 +60,6 @@ float WindowMaxOf(const float* x, std::size_t cols, std::size_t idx, int k) {
         }
     }
     return m;
-}
-
-CASMAP_VECTOR_CLONES void AbsInto(const float* __restrict src,
-                                  std::size_t n,
-                                  float* __restrict dst) {
-    for (std::size_t i = 0; i < n; ++i) {
-        dst[i] = std::abs(src[i]);
-    }
 }
 
 // Eq. 7 for one row in the default form (sum g_s, no E term), written so the compiler can
@@ -482,7 +297,7 @@ void CasFilterInto(const core::MapF& elevation,
     const bool need_abs = !fused || p.normalise == Normalise::kGlobal;
     if (need_abs) {
         abs_h.resize(elevation.data.size());
-        AbsInto(elevation.data.data(), abs_h.size(), abs_h.data());
+        detail::AbsInto(elevation.data.data(), abs_h.size(), abs_h.data());
     }
     if (fills.size() < elevation.data.size()) {
         fills.resize(elevation.data.size());  // grown once, never shrunk: no zeroing per call
@@ -508,9 +323,9 @@ void CasFilterInto(const core::MapF& elevation,
     RowStats s(cols);
     for (int i = k; i < elevation.rows - k; ++i) {
         if (fused) {
-            ColumnStatsK2Signed(elevation.data.data(), c, cols, i - k, s);
+            detail::ColumnStatsK2Signed(elevation.data.data(), c, cols, i - k, s);
         } else {
-            ComputeRowStats(abs_h.data(), c, cols, i - k, k, s);
+            detail::ComputeRowStats(abs_h.data(), c, cols, i - k, k, s);
         }
         const std::size_t row_off = static_cast<std::size_t>(i) * cols;
         std::uint8_t* cls = out.classes.data.data() + row_off;
