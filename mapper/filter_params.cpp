@@ -252,6 +252,12 @@ const std::map<std::string, Setter, std::less<>>& Setters() {
          [](FilterParams& p, auto n, auto v) {
              p.kalman.multi_height_noise_m2 = ParseRange(n, v, 0, kInf, false);
          }},
+        {"consensus.spread_m",
+         [](FilterParams& p, auto n, auto v) {
+             p.consensus.spread_m = ParseRange(n, v, 0, 1, false);
+         }},
+        {"consensus.min_hits",
+         [](FilterParams& p, auto n, auto v) { p.consensus.min_hits = ParseInt(n, v, 2, 1000000); }},
         {"center_weight",
          [](FilterParams& p, auto n, auto v) {
              const int w = ParseInt(n, v, 1, 99);

@@ -5,6 +5,7 @@
 #include <string_view>
 #include <vector>
 
+#include "casmap/mapper/consensus.hpp"
 #include "casmap/mapper/kalman_noise.hpp"
 #include "casmap/mapper/scan_filters.hpp"
 #include "casmap/mapper/sweep_jump.hpp"
@@ -130,7 +131,8 @@ struct BaselineParams {
 /// Every filter parameter, settable by name (NAME=VALUE; `casmap filter --set`, Python
 /// keywords): the map filters' (CAS and its variants, the baselines) and the mapping stages' a
 /// named pipeline may use: the scan pre-filters (shadow.<field>, range_jump.<field>,
-/// sweep_jump.<field>) and the Kalman mapper mode's noise model (kalman.<field>). A stage's
+/// sweep_jump.<field>), the Kalman mapper mode's noise model (kalman.<field>) and the consensus
+/// mapper mode's cell height (consensus.<field>). A stage's
 /// parameters matter only to pipelines that run the stage.
 struct FilterParams {
     CasParams cas;
@@ -141,6 +143,7 @@ struct FilterParams {
     SweepJumpConfig sweep_jump;  // sweep_jump.jump_min_m, .margin_m, .max_angle_deg
     KalmanNoiseConfig kalman;    // kalman.range_sigma_m, .beam_constant_m, .beam_angle_rad,
                                  // .min_variance_m2, .mahalanobis_gate, .multi_height_noise_m2
+    ConsensusConfig consensus;   // consensus.spread_m, .min_hits
 
     /// Sets one parameter by name (`unknown` sets cas.unknown and baseline.unknown); throws
     /// InputError for an unknown name or a value out of range, "filter parameters: <name> =

@@ -22,6 +22,7 @@ std::vector<StageSection> StageSections(const FilterParams& params) {
     const RangeJumpConfig& r = params.range_jump;
     const SweepJumpConfig& w = params.sweep_jump;
     const KalmanNoiseConfig& k = params.kalman;
+    const ConsensusConfig& c = params.consensus;
     return {
         {"shadow",
          {Number("min_angle_deg", s.min_angle_deg), Number("max_angle_deg", s.max_angle_deg),
@@ -39,6 +40,7 @@ std::vector<StageSection> StageSections(const FilterParams& params) {
           Number("beam_angle_rad", k.beam_angle_rad), Number("min_variance_m2", k.min_variance_m2),
           Number("mahalanobis_gate", k.mahalanobis_gate),
           Number("multi_height_noise_m2", k.multi_height_noise_m2)}},
+        {"consensus", {Number("spread_m", c.spread_m), Integer("min_hits", c.min_hits)}},
     };
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
-// The mapping stages' parameters (the scan pre-filters and the Kalman mapper's noise model) as
+// The mapping stages' parameters (the scan pre-filters, the Kalman mapper's noise model and the
+// consensus mapper's cell height) as
 // one table of name/value texts. Every writer of an effective configuration (`casmap bench`'s
 // `filters:` sections, `casmap map`'s map.yaml `mapper:` sections) renders this table, and the
 // bench's stage-map key is made from it, so a field added to a stage's config struct is added
@@ -25,12 +26,12 @@ struct StageParam {
 
 /// One stage's parameters, in the order of its config struct.
 struct StageSection {
-    std::string_view stage;  // "shadow" | "range_jump" | "sweep_jump" | "kalman"
+    std::string_view stage;  // "shadow" | "range_jump" | "sweep_jump" | "kalman" | "consensus"
     std::vector<StageParam> params;
 };
 
 /// The sections of every mapping stage of `params`, in the order shadow, range_jump,
-/// sweep_jump, kalman (whether a pipeline runs a stage is the caller's business).
+/// sweep_jump, kalman, consensus (whether a pipeline runs a stage is the caller's business).
 [[nodiscard]] std::vector<StageSection> StageSections(const FilterParams& params);
 
 }  // namespace casmap::mapper

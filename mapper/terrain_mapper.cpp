@@ -17,12 +17,21 @@ using detail::CosPitch;
 using detail::DeltaZMaxCs;
 using detail::ZRow;
 
+void ConsensusConfig::Validate() const {
+    const core::Check check("mapper");
+    check.NonNegative("consensus.spread_m", spread_m, "must be finite and >= 0");
+    check.That(min_hits >= 2, "consensus.min_hits", min_hits, "must be an integer >= 2");
+}
+
 void TerrainMapperConfig::Validate() const {
     grid.Validate();
     const core::Check check("mapper");
     check.NonNegative("delta_l_m", delta_l_m, "must be finite and >= 0");
     check.That(a >= 1, "a", a, "must be a positive integer");
     check.Positive("scan_period_s", scan_period_s, "must be finite and > 0");
+    if (consensus) {
+        consensus->Validate();
+    }
 }
 
 Eigen::Vector3d BeamToWorld(const core::Pose& world_T_sensor, double angle_rad, double range_m) {
@@ -79,6 +88,33 @@ TerrainMapper::TerrainMapper(const TerrainMapperConfig& config) : config_(config
         config_.unknown == Unknown::kNaN ? std::numeric_limits<float>::quiet_NaN() : 0.0F;
     elevation_ = core::MapF(config_.grid.rows, config_.grid.cols, unknown);
     certainty_ = core::MapF(config_.grid.rows, config_.grid.cols, 0.0F);
+    if (config_.consensus) {
+        eq6_ = elevation_;
+        const std::size_t cells = elevation_.data.size();
+        sum_m_.assign(cells, 0.0);
+        hits_.assign(cells, 0);
+        low_m_.assign(cells, std::numeric_limits<float>::infinity());
+        high_m_.assign(cells, -std::numeric_limits<float>::infinity());
+    }
+}
+
+void TerrainMapper::Update(std::size_t idx, double z, double dz_max_m) {
+    const bool nan = config_.unknown == Unknown::kNaN;
+    if (!config_.consensus) {
+        detail::UpdateCell(elevation_.data[idx], certainty_.data[idx], z, dz_max_m, config_.a, nan);
+        return;
+    }
+    float& eq6 = eq6_.data[idx];
+    detail::UpdateCell(eq6, certainty_.data[idx], z, dz_max_m, config_.a, nan);
+    const auto zf = static_cast<float>(z);
+    sum_m_[idx] += z;
+    const std::uint32_t hits = ++hits_[idx];
+    low_m_[idx] = std::min(low_m_[idx], zf);
+    high_m_[idx] = std::max(high_m_[idx], zf);
+    const bool agree = hits >= static_cast<std::uint32_t>(config_.consensus->min_hits) &&
+                       static_cast<double>(high_m_[idx]) - static_cast<double>(low_m_[idx]) <=
+                           config_.consensus->spread_m;
+    elevation_.data[idx] = agree ? static_cast<float>(sum_m_[idx] / hits) : eq6;
 }
 
 bool TerrainMapper::AddPoint(const Eigen::Vector3d& p_world, double dz_max_m) {
@@ -86,8 +122,9 @@ bool TerrainMapper::AddPoint(const Eigen::Vector3d& p_world, double dz_max_m) {
     if (!cell) {
         return false;
     }
-    detail::UpdateCell(elevation_.at(cell->row, cell->col), certainty_.at(cell->row, cell->col),
-                       p_world.z(), dz_max_m, config_.a, config_.unknown == Unknown::kNaN);
+    Update(static_cast<std::size_t>(cell->row) * static_cast<std::size_t>(config_.grid.cols) +
+               static_cast<std::size_t>(cell->col),
+           p_world.z(), dz_max_m);
     return true;
 }
 
@@ -132,6 +169,7 @@ void TerrainMapper::AddScan(const core::Scan& scan,
     const core::GridGeometry& g = config_.grid;
     detail::ComputeBatch(config_.delta_l_m, batch, &g);
     const bool nan = config_.unknown == Unknown::kNaN;
+    const bool consensus = config_.consensus.has_value();
     for (std::size_t j = 0; j < batch.size; ++j) {
         const double r = batch.row[j];
         const double c = batch.col[j];
@@ -141,8 +179,12 @@ void TerrainMapper::AddScan(const core::Scan& scan,
         }
         const std::size_t idx = static_cast<std::size_t>(r) * static_cast<std::size_t>(g.cols) +
                                 static_cast<std::size_t>(c);
-        detail::UpdateCell(elevation_.data[idx], certainty_.data[idx], batch.z[j], batch.dz_max[j],
-                           config_.a, nan);
+        if (consensus) {
+            Update(idx, batch.z[j], batch.dz_max[j]);
+        } else {
+            detail::UpdateCell(elevation_.data[idx], certainty_.data[idx], batch.z[j],
+                               batch.dz_max[j], config_.a, nan);
+        }
         ++stats_.beams_mapped;
     }
 }

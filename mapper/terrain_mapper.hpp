@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "casmap/core/pose.hpp"
 #include "casmap/core/scan.hpp"
 #include "casmap/core/trajectory.hpp"
+#include "casmap/mapper/consensus.hpp"
 #include "casmap/mapper/unknown.hpp"
 
 namespace casmap::mapper {
@@ -20,7 +22,8 @@ struct TerrainMapperConfig {
     int a = 3;                          // Eq. 5 certainty increment, a positive integer
     double scan_period_s = 1.0 / 75.0;  // Eq. 4: time between two consecutive measurements
     Unknown unknown = Unknown::kZero;   // never-observed elevation: 0 (paper) or NaN (grid_map)
-    void Validate() const;              // throws InputError naming the field
+    std::optional<ConsensusConfig> consensus;  // unset: the paper's Eq. 6 for every cell
+    void Validate() const;                     // throws InputError naming the field
 };
 
 /// How the sensor moved during the scan period before a beam (the deltas of Eq. 4).
@@ -84,7 +87,9 @@ struct BeamDirections {
 
 /// Elevation map H and certainty map C built by Eq. 1-6. Unknown cells hold elevation 0 (or NaN
 /// with Unknown::kNaN) and certainty 0, as in the paper. Certainty is a float count (multiples
-/// of a). Cost per beam is independent of the run's length (bench/mapper_bench.cpp).
+/// of a). Cost per beam is independent of the run's length (bench/mapper_bench.cpp). With
+/// `config.consensus` set, H holds the consensus cell height (ConsensusConfig); Eq. 5 and the
+/// certainty still compare each point with the cell's Eq. 6 height, so C is the paper's.
 class TerrainMapper {
 public:
     explicit TerrainMapper(const TerrainMapperConfig& config);  // validates config
@@ -109,11 +114,18 @@ public:
     [[nodiscard]] const MapperStats& stats() const { return stats_; }
 
 private:
+    void Update(std::size_t idx, double z, double dz_max_m);  // Eq. 5-6 (+ consensus) of a cell
     void AddBeamCs(const SensorState& state, double cos_angle, double sin_angle, double range_m);
 
     TerrainMapperConfig config_;
     core::MapF elevation_;
     core::MapF certainty_;
+    // Consensus mode only (empty otherwise): Eq. 6's height, and the sum, count, smallest and
+    // largest of each cell's heights.
+    core::MapF eq6_;
+    std::vector<double> sum_m_;
+    std::vector<std::uint32_t> hits_;
+    std::vector<float> low_m_, high_m_;
     MapperStats stats_;
     BeamDirections dirs_;  // per-beam direction of the last scan geometry
 };

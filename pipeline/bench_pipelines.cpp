@@ -34,6 +34,7 @@ std::size_t OrderOf(const std::string& name) {
 const std::vector<PipelineSpec>& AllPipelines() {
     constexpr MapperMode kPaper = MapperMode::kPaper;
     constexpr MapperMode kKalman = MapperMode::kKalman;
+    constexpr MapperMode kConsensus = MapperMode::kConsensus;
     constexpr Prefilter kNone = Prefilter::kNone;
     constexpr Prefilter kShadow = Prefilter::kShadow;
     constexpr Prefilter kJump = Prefilter::kRangeJump;
@@ -76,6 +77,14 @@ const std::vector<PipelineSpec>& AllPipelines() {
          "sweep-jump scan filter, Eq. 1-6 map, 5 x 5 median"},
         {"sweep_jump_hybrid", kPaper, kSweep, FilterMethod::kCasHybrid,
          "sweep-jump scan filter, Eq. 1-6 map, cas_hybrid"},
+        {"consensus", kConsensus, kNone, std::nullopt,
+         "Eq. 1-5 map with the consensus cell height (mean where a cell's heights agree)"},
+        {"consensus_median", kConsensus, kNone, FilterMethod::kMedian,
+         "consensus map, 5 x 5 median"},
+        {"consensus_hybrid", kConsensus, kNone, FilterMethod::kCasHybrid,
+         "consensus map, cas_hybrid"},
+        {"sweep_jump_consensus_hybrid", kConsensus, kSweep, FilterMethod::kCasHybrid,
+         "sweep-jump scan filter, consensus map, cas_hybrid"},
     };
     return all;
 }

@@ -92,8 +92,12 @@ MapRunFileResult MapRunFile(const MapRunFileOptions& o) {
     const MappedRun& mapped = result.mapped;
     const core::Raster<std::uint8_t> unknown = UnknownMask(mapped.certainty);
     const bool kalman = o.settings.mode == MapperMode::kKalman;
+    const bool consensus = o.settings.mode == MapperMode::kConsensus;
     WriteLayer(elevation_files, mapped.elevation,
-               kalman ? "elevation (Kalman mapper)" : "elevation (Eq. 6)", "m", &unknown);
+               kalman      ? "elevation (Kalman mapper)"
+               : consensus ? "elevation (consensus cell height)"
+                           : "elevation (Eq. 6)",
+               "m", &unknown);
     WriteLayer(certainty_files, mapped.certainty,
                kalman ? "certainty (a per fused scan)" : "certainty (Eq. 5)", "counts", &unknown);
     if (with_truth) {

@@ -44,12 +44,24 @@ MapperMode ParseMapperMode(std::string_view text, const std::string& field) {
     if (text == "kalman") {
         return MapperMode::kKalman;
     }
+    if (text == "consensus") {
+        return MapperMode::kConsensus;
+    }
     throw MakeInputError("", field, std::string(text),
-                         "allowed: paper (Eq. 1-6) | kalman (Kalman fusion of the lowest point)");
+                         "allowed: paper (Eq. 1-6) | kalman (Kalman fusion of the lowest point) "
+                         "| consensus (Eq. 1-5, the mean of a cell whose heights agree)");
 }
 
 std::string_view ToString(MapperMode mode) {
-    return mode == MapperMode::kKalman ? "kalman" : "paper";
+    switch (mode) {
+        case MapperMode::kKalman:
+            return "kalman";
+        case MapperMode::kConsensus:
+            return "consensus";
+        case MapperMode::kPaper:
+            break;
+    }
+    return "paper";
 }
 
 Prefilter ParsePrefilter(std::string_view text, const std::string& field) {
@@ -91,6 +103,7 @@ void MapSettings::Validate() const {
     range_jump.Validate();
     sweep_jump.Validate();
     kalman.Validate();
+    consensus.Validate();
 }
 
 namespace {
@@ -102,6 +115,7 @@ mapper::FilterParams StageParamsOf(const MapSettings& settings) {
     params.range_jump = settings.range_jump;
     params.sweep_jump = settings.sweep_jump;
     params.kalman = settings.kalman;
+    params.consensus = settings.consensus;
     return params;
 }
 
@@ -112,16 +126,21 @@ void SetStageParams(MapSettings& settings, const mapper::FilterParams& params) {
     settings.range_jump = params.range_jump;
     settings.sweep_jump = params.sweep_jump;
     settings.kalman = params.kalman;
+    settings.consensus = params.consensus;
 }
 
 bool IsStageParameter(std::string_view name) {
     return name.starts_with("shadow.") || name.starts_with("range_jump.") ||
-           name.starts_with("sweep_jump.") || name.starts_with("kalman.");
+           name.starts_with("sweep_jump.") || name.starts_with("kalman.") ||
+           name.starts_with("consensus.");
 }
 
 bool RunsStage(MapperMode mode, Prefilter prefilter, std::string_view stage) {
     if (stage == "kalman") {
         return mode == MapperMode::kKalman;
+    }
+    if (stage == "consensus") {
+        return mode == MapperMode::kConsensus;
     }
     return prefilter != Prefilter::kNone && stage == ToString(prefilter);
 }
@@ -139,16 +158,19 @@ void ApplyStageSettings(MapSettings& settings,
         if (!IsStageParameter(name)) {
             throw MakeInputError("", field, a,
                                  "not a mapping-stage parameter; allowed: shadow.<field>, "
-                                 "range_jump.<field>, sweep_jump.<field>, kalman.<field> (map "
-                                 "filters' parameters belong to casmap filter / bench)");
+                                 "range_jump.<field>, sweep_jump.<field>, kalman.<field>, "
+                                 "consensus.<field> (map filters' parameters belong to casmap "
+                                 "filter / bench)");
         }
         if (!RunsStage(settings.mode, settings.prefilter, name.substr(0, name.find('.')))) {
+            const bool kalman = name.starts_with("kalman.");
+            const bool mode = kalman || name.starts_with("consensus.");
             throw MakeInputError("", field, a,
-                                 name.starts_with("kalman.")
-                                     ? "the Kalman mapper's parameter, but the mapper mode is " +
-                                           std::string(ToString(settings.mode))
-                                     : "a pre-filter's parameter, but the pre-filter is " +
-                                           std::string(ToString(settings.prefilter)));
+                                 mode ? std::string(kalman ? "the Kalman" : "the consensus") +
+                                            " mapper's parameter, but the mapper mode is " +
+                                            std::string(ToString(settings.mode))
+                                      : "a pre-filter's parameter, but the pre-filter is " +
+                                            std::string(ToString(settings.prefilter)));
         }
         params.Set(name, a.substr(eq + 1));
     }
@@ -225,6 +247,9 @@ MappedRun MapScans(const std::vector<core::Scan>& scans,
         mapper::KalmanMapper mapper(kalman);
         AddScans(mapper, scans, world_T_sensor, settings);
         return MappedRun{mapper.elevation(), mapper.certainty(), mapper.stats(), config, settings};
+    }
+    if (settings.mode == MapperMode::kConsensus) {
+        config.consensus = settings.consensus;
     }
     mapper::TerrainMapper mapper(config);
     AddScans(mapper, scans, world_T_sensor, settings);

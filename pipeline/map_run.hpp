@@ -24,10 +24,12 @@
 
 namespace casmap::pipeline {
 
-/// How cell heights are estimated: the paper's Eq. 1-6 (TerrainMapper) or the Kalman fusion
-/// of each scan's lowest point per cell (KalmanMapper, Fankhauser et al.).
-enum class MapperMode { kPaper, kKalman };
-/// "paper" | "kalman"; throws InputError naming `field`.
+/// How cell heights are estimated: the paper's Eq. 1-6 (TerrainMapper), the Kalman fusion
+/// of each scan's lowest point per cell (KalmanMapper, Fankhauser et al.), or Eq. 1-5 with the
+/// consensus cell height (TerrainMapper with mapper::ConsensusConfig: the mean of a cell whose
+/// heights agree, Eq. 6 elsewhere).
+enum class MapperMode { kPaper, kKalman, kConsensus };
+/// "paper" | "kalman" | "consensus"; throws InputError naming `field`.
 [[nodiscard]] MapperMode ParseMapperMode(std::string_view text, const std::string& field);
 [[nodiscard]] std::string_view ToString(MapperMode mode);
 
@@ -50,17 +52,18 @@ struct MapSettings {
     mapper::RangeJumpConfig range_jump;  // used when prefilter == kRangeJump
     mapper::SweepJumpConfig sweep_jump;  // used when prefilter == kSweepJump
     mapper::KalmanNoiseConfig kalman;    // used when mode == kKalman
+    mapper::ConsensusConfig consensus;   // used when mode == kConsensus
     /// Throws InputError naming the field (a, delta_l_m, shadow.<f>, range_jump.<f>,
-    /// sweep_jump.<f>, kalman.<f>).
+    /// sweep_jump.<f>, kalman.<f>, consensus.<f>).
     void Validate() const;
 };
 
-/// The mapping-stage parameters of `params` (shadow.*, range_jump.*, sweep_jump.*, kalman.*)
-/// into `settings`.
+/// The mapping-stage parameters of `params` (shadow.*, range_jump.*, sweep_jump.*, kalman.*,
+/// consensus.*) into `settings`.
 void SetStageParams(MapSettings& settings, const mapper::FilterParams& params);
 
-/// True for a parameter of a mapping stage (a name starting shadow., range_jump., sweep_jump.
-/// or kalman.).
+/// True for a parameter of a mapping stage (a name starting shadow., range_jump., sweep_jump.,
+/// kalman. or consensus.).
 [[nodiscard]] bool IsStageParameter(std::string_view name);
 
 /// True when a mapper in `mode` with `prefilter` runs the mapping stage `stage` (a section of
@@ -72,7 +75,8 @@ void SetStageParams(MapSettings& settings, const mapper::FilterParams& params);
 /// parameters to `settings`, then validates. Throws InputError naming `field` for an
 /// assignment that is not NAME=VALUE, a parameter that is not a stage's (a map filter's
 /// parameter) or a stage `settings` does not run (shadow.* without the shadow pre-filter,
-/// range_jump.* / sweep_jump.* without that pre-filter, kalman.* without the Kalman mapper), and
+/// range_jump.* / sweep_jump.* without that pre-filter, kalman.* / consensus.* without that
+/// mapper mode), and
 /// the parameter itself for a bad value.
 void ApplyStageSettings(MapSettings& settings,
                         const std::vector<std::string>& assignments,

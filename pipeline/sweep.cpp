@@ -39,22 +39,26 @@ void CheckStageAxis(const SweepOptions& opt, const std::string& name) {
     const bool shadow = name.starts_with("shadow.");
     const bool jump = name.starts_with("range_jump.");
     const bool sweep = name.starts_with("sweep_jump.");
-    const bool used = shadow  ? spec.prefilter == Prefilter::kShadow
-                      : jump  ? spec.prefilter == Prefilter::kRangeJump
-                      : sweep ? spec.prefilter == Prefilter::kSweepJump
-                              : spec.mode == MapperMode::kKalman;
+    const bool consensus = name.starts_with("consensus.");
+    const bool used = shadow      ? spec.prefilter == Prefilter::kShadow
+                      : jump      ? spec.prefilter == Prefilter::kRangeJump
+                      : sweep     ? spec.prefilter == Prefilter::kSweepJump
+                      : consensus ? spec.mode == MapperMode::kConsensus
+                                  : spec.mode == MapperMode::kKalman;
     if (!used) {
         throw MakeInputError("", "axes", name,
                              "the filter " + opt.filter + " does not run the " +
-                                 (shadow  ? "shadow pre-filter"
-                                  : jump  ? "range_jump pre-filter"
-                                  : sweep ? "sweep_jump pre-filter"
-                                          : "Kalman mapper") +
+                                 (shadow      ? "shadow pre-filter"
+                                  : jump      ? "range_jump pre-filter"
+                                  : sweep     ? "sweep_jump pre-filter"
+                                  : consensus ? "consensus mapper"
+                                              : "Kalman mapper") +
                                  " (sweep a pipeline that does, e.g. " +
-                                 (shadow  ? "shadow_cas"
-                                  : jump  ? "range_jump_cas"
-                                  : sweep ? "sweep_jump_hybrid"
-                                          : "kalman_median") +
+                                 (shadow      ? "shadow_cas"
+                                  : jump      ? "range_jump_cas"
+                                  : sweep     ? "sweep_jump_hybrid"
+                                  : consensus ? "consensus_hybrid"
+                                              : "kalman_median") +
                                  ")");
     }
 }
@@ -207,7 +211,8 @@ const std::vector<std::string>& SweepableParameters() {
         "sweep_jump.jump_min_m", "sweep_jump.margin_m", "sweep_jump.max_angle_deg",
         "sweep_jump.depression_share", "sweep_jump.reach", "kalman.range_sigma_m",
         "kalman.beam_constant_m", "kalman.beam_angle_rad", "kalman.min_variance_m2",
-        "kalman.mahalanobis_gate", "kalman.multi_height_noise_m2"};
+        "kalman.mahalanobis_gate", "kalman.multi_height_noise_m2", "consensus.spread_m",
+        "consensus.min_hits"};
     return names;
 }
 

@@ -98,7 +98,7 @@ void AddBenchCommand(CLI::App& app, CommonOptions& common) {
                     "LMS 200 YAML (config/lms200.yaml; default: the built-in config)");
     sub->add_option("--set", opt.filter_settings,
                     "filter parameter NAME=VALUE (see casmap filter), or a pre-filter's / the "
-                    "Kalman mapper's shadow.*, range_jump.*, sweep_jump.*, kalman.* "
+                    "mapper modes' shadow.*, range_jump.*, sweep_jump.*, kalman.*, consensus.* "
                     "(docs/commands/bench.md)");
     sub->add_option("--pipelines", flags->pipelines,
                     "named pipelines to score, comma list or all (default: the paper's five: "

@@ -1,6 +1,7 @@
-// casmap map RUN.h5 [--out DIR] [--grid X0,Y0,CELL_M,ROWS,COLS] [--mapper paper|kalman]
+// casmap map RUN.h5 [--out DIR] [--grid X0,Y0,CELL_M,ROWS,COLS] [--mapper paper|kalman|consensus]
 //                  [--unknown zero|nan] [--prefilter none|shadow|range_jump|sweep_jump]
-//                  [--set shadow.<f>=V | range_jump.<f>=V | sweep_jump.<f>=V | kalman.<f>=V ...]
+//                  [--set shadow.<f>=V | range_jump.<f>=V | sweep_jump.<f>=V | kalman.<f>=V |
+//                   consensus.<f>=V ...]
 // Builds the elevation and certainty maps (Eq. 1-6, or the Kalman mapper) of a run file,
 // simulated or recorded (the truth labels are never read), and writes them as float TIFF +
 // colour PNG into DIR and as /maps/elevation_m and /maps/certainty into the run file: flags ->
@@ -68,7 +69,8 @@ void AddMapCommand(CLI::App& app, CommonOptions& common) {
     sub->add_option("--grid", opt->grid,
                     "X0,Y0,CELL_M,ROWS,COLS (default: the run's grid, else the beams' extent)");
     sub->add_option("--mapper", opt->mapper,
-                    "paper (Eq. 1-6) | kalman (Kalman fusion of each scan's lowest point)")
+                    "paper (Eq. 1-6) | kalman (Kalman fusion of each scan's lowest point) | "
+                    "consensus (Eq. 1-5, the mean of a cell whose heights agree)")
         ->capture_default_str();
     sub->add_option("--unknown", opt->unknown,
                     "never-observed cells: zero (the paper) | nan (grid_map convention)")

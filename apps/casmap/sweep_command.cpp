@@ -97,7 +97,8 @@ void AddSweepCommand(CLI::App& app, CommonOptions& common) {
     }
     sub->add_option("--set", flags->set,
                     axes +
-                        " (shadow.*, range_jump.*, sweep_jump.*, kalman.* with a pipeline "
+                        " (shadow.*, range_jump.*, sweep_jump.*, kalman.*, consensus.* with a "
+                        "pipeline "
                         "running them; docs/commands/sweep.md); repeatable");
     sub->add_option("--fix", opt.fixed, "fixed filter parameter NAME=VALUE; repeatable");
     sub->add_option("--courses", flags->courses, "training courses, e.g. 1-16, 4 or 1,4,7-9")

@@ -156,7 +156,7 @@ def map_run(run: Run, grid: Optional[Grid] = None, cell_m: float = 0.025, a: int
             prefilter: str = "none"):
     """Elevation and certainty maps of a run, as `casmap map` builds them.
 
-    mapper "paper" (Eq. 1-6) or "kalman"; unknown "zero" (the paper) or "nan"; prefilter
+    mapper "paper" (Eq. 1-6), "kalman" or "consensus"; unknown "zero" (the paper) or "nan"; prefilter
     "none", "shadow", "range_jump" or "sweep_jump" (as `casmap map --mapper/--unknown/--prefilter`).
     grid None: the smallest grid of cell_m cells covering every valid beam. Returns
     (elevation, certainty, grid).

@@ -214,6 +214,21 @@ TEST(MapCommand, UnknownNanKalmanAndPrefilterModes) {
     const std::string yaml = test::ReadText(dir / "kalman" / "map.yaml");
     EXPECT_NE(yaml.find("mode: kalman"), std::string::npos) << yaml;
 
+    // Consensus: the paper's certainty, heights at least as close to the truth on the floor.
+    r = Casmap("map " + run + " --mapper consensus --out " + (dir / "consensus").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const core::MapF& hp = h0;
+    const core::MapF& cp = c0;
+    const core::MapF hc = io::ReadMapTiff(dir / "consensus" / "elevation.tiff");
+    const core::MapF cc = io::ReadMapTiff(dir / "consensus" / "certainty.tiff");
+    ASSERT_EQ(cc.data, cp.data);
+    for (std::size_t i = 0; i < hc.data.size(); ++i) {
+        // A mean never exceeds the largest |z|, Eq. 6's height.
+        EXPECT_LE(std::abs(hc.data[i]), std::abs(hp.data[i])) << i;
+    }
+    EXPECT_NE(test::ReadText(dir / "consensus" / "map.yaml").find("mode: consensus"),
+              std::string::npos);
+
     // A pre-filter rejects beams (recorded in map.yaml) and the block still maps.
     r = Casmap("map " + run + " --prefilter range_jump --out " + (dir / "jump").string());
     ASSERT_EQ(r.code, 0) << r.output;
@@ -260,6 +275,10 @@ TEST(MapCommand, BadModeFlagsExitTwoNamingTheFlag) {
               "sweep_jump.max_angle_deg = 90"},
              {"--set sweep_jump.margin_m=0.01", "the pre-filter is none"},
              {"--mapper kalman --set kalman.min_variance_m2=0", "kalman.min_variance_m2"},
+             {"--set consensus.spread_m=0.03", "the mapper mode is paper"},
+             {"--mapper consensus --set consensus.min_hits=1", "consensus.min_hits = 1"},
+             {"--mapper consensus --set consensus.spread_m=-0.01", "consensus.spread_m"},
+             {"--mapper median", "consensus"},
              {"--prefilter shadow --set shadow.window", "NAME=VALUE"}}) {
         const Result r = Casmap("map " + run + " " + c.args);
         EXPECT_EQ(r.code, 2) << c.args << ": " << r.output;
@@ -289,6 +308,13 @@ TEST(MapCommand, SetsThePreFilterAndKalmanParameters) {
     const YAML::Node k = YAML::LoadFile((dir / "kalman" / "map.yaml").string());
     EXPECT_EQ(k["mapper"]["kalman"]["range_sigma_m"].as<double>(), 0.02);
     EXPECT_FALSE(k["mapper"]["shadow"]);
+    r = Casmap("map " + run + " --mapper consensus --set consensus.spread_m=0.03 --set " +
+               "consensus.min_hits=4 --out " + (dir / "consensus").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const YAML::Node c = YAML::LoadFile((dir / "consensus" / "map.yaml").string());
+    EXPECT_EQ(c["mapper"]["consensus"]["spread_m"].as<double>(), 0.03);
+    EXPECT_EQ(c["mapper"]["consensus"]["min_hits"].as<int>(), 4);
+    EXPECT_FALSE(c["mapper"]["kalman"]);
 }
 
 }  // namespace

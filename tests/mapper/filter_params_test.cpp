@@ -76,8 +76,12 @@ TEST(FilterParams, SetsEveryNamedParameter) {
     EXPECT_EQ(p.cas.edge_spill, 0.25);
     p.Set("nan_median_mix", "0.5");
     EXPECT_EQ(p.cas.nan_median_mix, 0.5);
+    p.Set("consensus.spread_m", "0.03");
+    p.Set("consensus.min_hits", "4");
+    EXPECT_EQ(p.consensus.spread_m, 0.03);
+    EXPECT_EQ(p.consensus.min_hits, 4);
     EXPECT_NO_THROW(p.Validate());
-    EXPECT_EQ(FilterParams::Names().size(), 55U);  // 36 filter + 19 mapping-stage names
+    EXPECT_EQ(FilterParams::Names().size(), 57U);  // 36 filter + 21 mapping-stage names
 }
 
 TEST(FilterParams, SetsTheWaveTwoOptions) {

@@ -39,7 +39,7 @@ TEST(StageSections, TextsReadBackThroughSet) {
           "shadow.remove_start_point=on", "range_jump.chord_tol_m=0.0625",
           "sweep_jump.jump_min_m=0.3", "sweep_jump.margin_m=0.1", "sweep_jump.max_angle_deg=7.25",
           "sweep_jump.depression_share=0", "sweep_jump.reach=3", "kalman.min_variance_m2=2.5e-07",
-          "kalman.mahalanobis_gate=0.1"}) {
+          "kalman.mahalanobis_gate=0.1", "consensus.spread_m=0.035", "consensus.min_hits=5"}) {
         set.SetAssignment(a);
     }
     FilterParams back;
@@ -66,7 +66,9 @@ TEST(StageSections, TextsReadBackThroughSet) {
                a.kalman.beam_angle_rad == b.kalman.beam_angle_rad &&
                a.kalman.min_variance_m2 == b.kalman.min_variance_m2 &&
                a.kalman.mahalanobis_gate == b.kalman.mahalanobis_gate &&
-               a.kalman.multi_height_noise_m2 == b.kalman.multi_height_noise_m2;
+               a.kalman.multi_height_noise_m2 == b.kalman.multi_height_noise_m2 &&
+               a.consensus.spread_m == b.consensus.spread_m &&
+               a.consensus.min_hits == b.consensus.min_hits;
     };
     EXPECT_TRUE(same(back, set));
     EXPECT_FALSE(same(FilterParams{}, set));  // the settings above all reached the table

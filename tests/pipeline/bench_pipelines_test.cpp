@@ -40,7 +40,11 @@ TEST(BenchPipelines, RegistryNamesAreStableAndThePaperFiveComeFirst) {
                                                "sweep_jump",
                                                "sweep_jump_cas",
                                                "sweep_jump_median",
-                                               "sweep_jump_hybrid"};
+                                               "sweep_jump_hybrid",
+                                               "consensus",
+                                               "consensus_median",
+                                               "consensus_hybrid",
+                                               "sweep_jump_consensus_hybrid"};
     EXPECT_EQ(AllPipelineNames(), expected);
     EXPECT_EQ(PaperPipelineNames(),
               (std::vector<std::string>{"cas", "wiener", "average", "median", "cwm"}));
@@ -58,6 +62,10 @@ TEST(BenchPipelines, RegistryNamesAreStableAndThePaperFiveComeFirst) {
     EXPECT_EQ(*FindPipeline("kalman_median", "f").filter, mapper::FilterMethod::kMedian);
     EXPECT_EQ(FindPipeline("sweep_jump_hybrid", "f").prefilter, Prefilter::kSweepJump);
     EXPECT_EQ(*FindPipeline("sweep_jump_hybrid", "f").filter, mapper::FilterMethod::kCasHybrid);
+    EXPECT_EQ(FindPipeline("consensus", "f").mode, MapperMode::kConsensus);
+    EXPECT_FALSE(FindPipeline("consensus", "f").filter.has_value());
+    EXPECT_EQ(FindPipeline("sweep_jump_consensus_hybrid", "f").mode, MapperMode::kConsensus);
+    EXPECT_EQ(FindPipeline("sweep_jump_consensus_hybrid", "f").prefilter, Prefilter::kSweepJump);
     for (const PipelineSpec& p : AllPipelines()) {
         EXPECT_FALSE(p.description.empty()) << p.name;
     }
