@@ -84,6 +84,15 @@ def test_map_run_and_mapper_equal_casmap_map(exe, cli_run, tmp_path):
     assert np.array_equal(sc, casmap.read_map_tiff(tmp_path / "sweep" / "certainty.tiff"))
     # Course 4's box edges give it mixed pixels to reject: the maps differ from the plain ones.
     assert not np.array_equal(sc, c)
+    # The consensus mode: `casmap map --mapper consensus`'s maps, the paper's certainty, and no
+    # cell farther from 0 m than Eq. 6's (a mean never exceeds the largest |z|).
+    run_cli(exe, "map", cli_run, "--out", tmp_path / "consensus", "--mapper", "consensus")
+    ch, cc, _ = casmap.map_run(run, grid=run.maps.grid, mapper="consensus")
+    assert np.array_equal(ch, casmap.read_map_tiff(tmp_path / "consensus" / "elevation.tiff"))
+    assert np.array_equal(cc, c)
+    assert (np.abs(ch) <= np.abs(h)).all() and (ch != h).any()
+    with pytest.raises(ValueError, match="consensus"):
+        casmap.map_run(run, grid=run.maps.grid, mapper="median")
 
 
 @needs_sim
