@@ -59,13 +59,17 @@ std::vector<core::Scan> TableScans(int count) {
 }
 
 // Maps every scan of a run of state.range(0) seconds (75 scans/s from t = 0.05 s to the end):
-// beams/s must not depend on the length.
-void BM_MapperIngest(benchmark::State& state) {
+// beams/s must not depend on the length. With `consensus`, the consensus cell height
+// (mapper/consensus.hpp) beside the paper's Eq. 6.
+void MapperIngest(benchmark::State& state, bool consensus) {
     const auto seconds = static_cast<int>(state.range(0));
     const core::Trajectory trajectory = TableTrajectory(seconds);
     const std::vector<core::Scan> scans = TableScans(75 * seconds - 5);
     mapper::TerrainMapperConfig cfg;
     cfg.grid = core::GridGeometry{-1.0, -4.0, 0.025, 400, 320};
+    if (consensus) {
+        cfg.consensus = mapper::ConsensusConfig{};
+    }
     mapper::TerrainMapper m(cfg);
     std::int64_t beams = 0;
     for (auto _ : state) {
@@ -79,7 +83,11 @@ void BM_MapperIngest(benchmark::State& state) {
     state.counters["time_per_beam"] = benchmark::Counter(
         static_cast<double>(beams), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
+void BM_MapperIngest(benchmark::State& state) { MapperIngest(state, false); }
 BENCHMARK(BM_MapperIngest)->Arg(6)->Arg(60)->Unit(benchmark::kMillisecond);
+
+void BM_MapperIngestConsensus(benchmark::State& state) { MapperIngest(state, true); }
+BENCHMARK(BM_MapperIngestConsensus)->Arg(6)->Arg(60)->Unit(benchmark::kMillisecond);
 
 // The sweep-jump pre-filter's labels for the same runs (every beam to world coordinates once,
 // then three scans compared): its cost per beam beside the mapper's.
