@@ -28,9 +28,11 @@ inline constexpr int kMaxHeaderContinuations = 64;
 /// NUL-terminated inside the message; name, datatype and dataspace do not fit the message; the
 /// dataspace is shorter than its rank needs or the datatype than its 8-byte header; the value
 /// does not fit the bytes after the dataspace; a block outside the file; more than
-/// kMaxHeaderContinuations blocks), or nullopt when every attribute message is sound. A
-/// version 2 header (checksummed) is accepted as it is; a superblock that cannot be read at
-/// byte 0 is reported.
+/// kMaxHeaderContinuations blocks), or nullopt when every attribute message is sound. A shared
+/// (committed) datatype or dataspace is read where the reference points (an object header of
+/// either version), as HDF5 reads it; one in the shared message heap is not checked. A version
+/// 2 header (checksummed) is accepted as it is; a superblock that cannot be read at byte 0 is
+/// reported.
 [[nodiscard]] std::optional<std::string> FindCorruptAttributeMessages(std::uint64_t address,
                                                                       std::uint64_t file_size,
                                                                       const ReadAt& read);

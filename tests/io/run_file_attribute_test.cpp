@@ -206,6 +206,87 @@ for libver in ["earliest", "latest"]:
     EXPECT_EQ(bytes.find("OHDR"), std::string::npos);
 }
 
+// An attribute whose datatype is committed (attribute message version 2, datatype shared) is
+// sized by the datatype message in the committed datatype's own object header, where HDF5
+// reads it.
+TEST(RunFileAttributes, ASharedDatatypeIsSizedWhereItIsCommitted) {
+    const casmap::test::TempDir dir("run_attribute_committed");
+    std::string out;
+    const int rc = RunPython(dir.Path(),
+                             R"PY(
+import h5py, numpy as np
+with h5py.File(")PY" + (dir / "c.h5").string() +
+                                 R"PY(", "w", libver="earliest") as f:
+    f["t"] = np.dtype("<i2")
+    f.attrs.create("c", np.arange(4, dtype=np.int16), dtype=f["t"])
+    print(h5py.h5o.get_info(f["t"].id).addr)
+)PY",
+                             &out);
+    ASSERT_EQ(rc, 0) << out;
+    const std::size_t header = std::stoul(out);
+    const std::string bytes = ReadBytes(dir / "c.h5");
+    // The committed type's header: 16-byte prefix, its datatype message's 8-byte header, then
+    // class and version 0x10 (fixed-point, version 1), 3 bytes of flags, the size (2).
+    ASSERT_EQ(static_cast<unsigned char>(bytes.at(header + 24)), 0x10U);
+    ASSERT_EQ(static_cast<unsigned char>(bytes.at(header + 28)), 2U);
+    EXPECT_EQ(ReadError(bytes).find("corrupt file"), std::string::npos) << ReadError(bytes);
+
+    std::string wide = bytes;
+    wide[header + 28] = 64;  // the message holds 8 bytes of value and 4 of padding
+    EXPECT_NE(ReadError(wide).find(
+                  "its value of 4 element(s) of 64 bytes does not fit the 12 bytes after its "
+                  "dataspace"),
+              std::string::npos)
+        << ReadError(wide);
+
+    // The committed type's datatype message made a shared reference to its own header.
+    std::string loop = bytes;
+    loop[header + 20] = 0x02;  // message flags: shared
+    loop[header + 24] = 2;     // shared message version 2, committed, the header's address
+    loop[header + 25] = 2;
+    for (int k = 0; k < 8; ++k) {
+        loop[header + 26 + k] = static_cast<char>((header >> (8 * k)) & 0xFFU);
+    }
+    EXPECT_NE(ReadError(loop).find("its shared datatype is more than 4 references away"),
+              std::string::npos)
+        << ReadError(loop);
+}
+
+// The same with the committed type in a version 2 header (committed after the file was
+// reopened with the latest format): the attribute in the root's version 1 header is walked, the
+// reference followed into the "OHDR" header.
+TEST(RunFileAttributes, ASharedDatatypeInAVersionTwoHeaderIsFollowed) {
+    const casmap::test::TempDir dir("run_attribute_committed_v2");
+    std::string out;
+    const int rc = RunPython(dir.Path(), R"PY(
+import h5py, numpy as np
+name = ")PY" + (dir / "m.h5").string() + R"PY("
+with h5py.File(name, "w", libver="earliest") as f:
+    f["x"] = 1
+with h5py.File(name, "r+", libver="latest") as f:
+    f["t"] = np.dtype("<i2")
+    f.attrs.create("c", np.arange(4, dtype=np.int16), dtype=f["t"])
+    print(h5py.h5o.get_info(f["t"].id).addr)
+)PY",
+                             &out);
+    ASSERT_EQ(rc, 0) << out;
+    const std::size_t header = std::stoul(out);
+    const std::string bytes = ReadBytes(dir / "m.h5");
+    EXPECT_EQ(ReadError(bytes).find("corrupt file"), std::string::npos) << ReadError(bytes);
+    // "OHDR", version 2, flags 0x20 (16 bytes of times follow), a 1-byte chunk size, then the
+    // datatype message: type 1, size 2, flags 1, class and version 4, size 4.
+    ASSERT_EQ(bytes.substr(header, 4), "OHDR");
+    ASSERT_EQ(static_cast<unsigned char>(bytes.at(header + 5)), 0x20U);
+    const std::size_t message = header + 6 + 16 + 1;
+    ASSERT_EQ(static_cast<unsigned char>(bytes.at(message)), 3U);
+    ASSERT_EQ(static_cast<unsigned char>(bytes.at(message + 8)), 2U);
+    std::string wide = bytes;
+    wide[message + 8] = 64;
+    EXPECT_NE(ReadError(wide).find("its value of 4 element(s) of 64 bytes does not fit"),
+              std::string::npos)
+        << ReadError(wide);
+}
+
 TEST(RunFileAttributes, VersionTwoHeadersAreLeftToTheirChecksum) {
     // A header that starts with "OHDR" is checked by HDF5 (Jenkins lookup3 checksum) before it
     // decodes a message; the walk accepts it without reading further.
