@@ -7,6 +7,8 @@
 #include <set>
 #include <vector>
 
+#include "casmap/io/hdf5_datatype_check.hpp"
+
 namespace casmap::io::h5 {
 namespace {
 
@@ -247,6 +249,10 @@ std::optional<std::string> CheckValue(const Parts& parts,
     if (parts.datatype.size() < kDatatypeHeaderBytes) {
         return what + ": its datatype of " + std::to_string(parts.datatype.size()) +
                " bytes is shorter than a datatype's 8-byte header";
+    }
+    if (std::optional<std::string> why =
+            CheckDatatypeEncoding(parts.datatype.data(), parts.datatype.size())) {
+        return what + ": " + *why;
     }
     std::uint64_t element = Decode(parts.datatype.data() + 4, 4);
     if ((parts.datatype[0] & 0x0FU) == kVariableLength) {  // HDF5 may size it for the file

@@ -138,6 +138,23 @@ TEST(RunFileAttributes, ADataspaceShorterThanItsRankIsAnInputError) {
         << error;
 }
 
+TEST(RunFileAttributes, ADatatypeEncodingThatOverrunsItsPartIsAnInputError) {
+    // range_mode's fixed-length string datatype (8 bytes) made a compound of one member: HDF5
+    // would strdup the member's name from the bytes after the datatype.
+    std::string bytes = WrittenRun();
+    const std::size_t at = AttributeName(bytes, "range_mode");
+    const std::size_t type = AttributeDatatype(bytes, at);
+    ASSERT_EQ(static_cast<unsigned char>(bytes[type]) & 0x0FU, 3U) << "not a string datatype";
+    bytes[type] = static_cast<char>(0x16);  // version 1, class 6 (compound)
+    bytes[type + 1] = 1;                    // one member
+    EXPECT_NE(ReadError(bytes).find(
+                  "attribute message at byte " + std::to_string(at - 16) +
+                  ": datatype compound member 0 name at byte 8 is not NUL-terminated (its "
+                  "datatype's 8 bytes)"),
+              std::string::npos)
+        << ReadError(bytes);
+}
+
 TEST(RunFileAttributes, TheFuzzersValueOverreadInputIsAnInputError) {
     // The root's casmap_run_format_version (in a continuation block at byte 800): an integer
     // of 44 bytes with 8 bytes left in the message.
