@@ -190,15 +190,19 @@ void BindMapper(py::module_& m) {
         .def("__len__", &core::Trajectory::size);
 
     py::class_<mapper::TerrainMapper>(m, "_Mapper")
-        .def(py::init(
-            [](const core::GridGeometry& grid, int a, double delta_l_m, double scan_period_s) {
-                mapper::TerrainMapperConfig config;
-                config.grid = grid;
-                config.a = a;
-                config.delta_l_m = delta_l_m;
-                config.scan_period_s = scan_period_s;
-                return mapper::TerrainMapper(config);
-            }))
+        .def(py::init([](const core::GridGeometry& grid, int a, double delta_l_m,
+                         double scan_period_s, std::optional<double> consensus_spread_m,
+                         int consensus_min_hits) {
+            mapper::TerrainMapperConfig config;
+            config.grid = grid;
+            config.a = a;
+            config.delta_l_m = delta_l_m;
+            config.scan_period_s = scan_period_s;
+            if (consensus_spread_m) {
+                config.consensus = mapper::ConsensusConfig{*consensus_spread_m, consensus_min_hits};
+            }
+            return mapper::TerrainMapper(config);
+        }))
         .def("add_scan",
              [](mapper::TerrainMapper& self, double stamp_s, const py::handle& ranges_m,
                 const py::handle& status, const core::Trajectory& poses,

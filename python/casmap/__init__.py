@@ -172,11 +172,18 @@ class Mapper:
         mapper = casmap.Mapper(casmap.Grid(x0_m=1, y0_m=-1, cell_m=0.025, rows=200, cols=80))
         mapper.add_scan(stamp_s, ranges_m, status, poses)
         h, c = mapper.elevation, mapper.certainty
+
+    consensus_spread_m (None: the paper's Eq. 6) selects the consensus cell height, as
+    `casmap map --mapper consensus --set consensus.spread_m=...`: a cell whose heights all lie
+    within that spread, over at least consensus_min_hits points, holds their mean.
+    ValueError for a bad value, naming consensus.<field>.
     """
 
     def __init__(self, grid: Grid, a: int = 3, delta_l_m: float = 0.032,
-                 scan_period_s: float = 1.0 / 75.0):
-        self._mapper = _casmap._Mapper(grid, a, delta_l_m, scan_period_s)
+                 scan_period_s: float = 1.0 / 75.0, *, consensus_spread_m: float | None = None,
+                 consensus_min_hits: int = 2):
+        self._mapper = _casmap._Mapper(grid, a, delta_l_m, scan_period_s, consensus_spread_m,
+                                       consensus_min_hits)
 
     def add_scan(self, stamp_s: float, ranges_m, status, poses: Poses, *,
                  start_angle_rad: float = -math.pi / 2, angle_step_rad: float = math.pi / 180,

@@ -93,6 +93,19 @@ def test_map_run_and_mapper_equal_casmap_map(exe, cli_run, tmp_path):
     assert (np.abs(ch) <= np.abs(h)).all() and (ch != h).any()
     with pytest.raises(ValueError, match="consensus"):
         casmap.map_run(run, grid=run.maps.grid, mapper="median")
+    # ... and the scan-by-scan Mapper with the same (default) consensus settings.
+    period = float(np.median(np.diff(run.scans.stamp_s)))
+    incremental = casmap.Mapper(grid, scan_period_s=period, consensus_spread_m=0.02)
+    for k in range(len(s.stamp_s)):
+        incremental.add_scan(s.stamp_s[k], s.ranges_m[k], s.status[k], run.poses,
+                             start_angle_rad=s.start_angle_rad, angle_step_rad=s.angle_step_rad,
+                             beam_period_s=s.beam_period_s)
+    assert np.array_equal(incremental.elevation, ch)
+    assert np.array_equal(incremental.certainty, cc)
+    for bad in ({"consensus_spread_m": -0.01}, {"consensus_spread_m": 0.02,
+                                                 "consensus_min_hits": 1}):
+        with pytest.raises(ValueError, match="consensus"):
+            casmap.Mapper(grid, **bad)
 
 
 @needs_sim
