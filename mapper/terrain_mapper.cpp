@@ -17,12 +17,6 @@ using detail::CosPitch;
 using detail::DeltaZMaxCs;
 using detail::ZRow;
 
-void ConsensusConfig::Validate() const {
-    const core::Check check("mapper");
-    check.NonNegative("consensus.spread_m", spread_m, "must be finite and >= 0");
-    check.That(min_hits >= 2, "consensus.min_hits", min_hits, "must be an integer >= 2");
-}
-
 void TerrainMapperConfig::Validate() const {
     grid.Validate();
     const core::Check check("mapper");
