@@ -3,7 +3,6 @@
 // determinism across thread counts and the bad-input contract.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -14,6 +13,7 @@
 #include <vector>
 
 #include "tests/apps/cli_runner.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace casmap {
 namespace {
@@ -40,12 +40,8 @@ std::string ReadText(const fs::path& path) {
 }
 
 fs::path FreshDir(const std::string& name) {
-    // The pid keeps concurrent ctest runs (several worktrees on one machine) apart.
-    const fs::path dir = fs::path(testing::TempDir()) /
-                         ("casmap_bench_cmd_" + name + "_" + std::to_string(getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
+    // A unique folder (mkdtemp), removed when the test process exits.
+    return casmap::test::MakeTempDir("bench_cmd_" + name);
 }
 
 /// bench.json without the fields that legitimately vary (elapsed time, thread count).
