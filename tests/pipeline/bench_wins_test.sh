@@ -18,16 +18,27 @@ printf '{"runs": [%s, %s, %s]}\n' "$(run 1 T 0.25 3 0.5 0.875)" "$(run 2 T 0.75 
 printf '{"runs": [%s]}\n' "$(run 1 T 0.25 3 0.25 0.5)" > "$work/s2/bench.json"
 /usr/bin/python3 "$src/scripts/bench_wins.py" "$work/s1" "$work/s2" --pipeline A --versus B \
     > "$work/out.md"
-# T: 1 of 2 in s1, 1 of 1 in s2; every pole in 2 of 3 runs; beaten once, by B.
-grep -qx '| T | 1/2 | 1/1 | 2/3 | 2/3 | B 1 |' "$work/out.md"
+# T: 1 of 2 in s1, 1 of 1 in s2 (only s2 reaches 14 of 16's share); every pole in 2 of 3 runs;
+# beaten once, by B.
+grep -qx '| T | 1/2 | 1/1 | 2/3 | 1/2 | 2/3 | B 1 |' "$work/out.md"
 # TP: s2 has no TP run; a tie counts as a win.
-grep -qx '| TP | 1/1 | - | 1/1 | 1/1 | - |' "$work/out.md"
+grep -qx '| TP | 1/1 | - | 1/1 | 1/1 | 1/1 | - |' "$work/out.md"
 # Paired A - B in T: -0.25, +0.25, 0 -> mean 0, sd 0.25, one of three below 0.
 grep -qx '| T | 3 | +0.0000 | 0.2500 | +0.00 | 0.33 |' "$work/out.md"
 grep -qx '| TP | 1 | +0.0000 | 0.0000 | - | 0.00 |' "$work/out.md"
 if grep -q '^| TR |' "$work/out.md"; then
     echo "printed a test without runs"; exit 1
 fi
+# --among C: B is no rival. T: A wins course 1 (0.25 < 0.875), C course 2 (0.625 < 0.75);
+# TP: A below C.
+/usr/bin/python3 "$src/scripts/bench_wins.py" "$work/s1" --pipeline A --among C > "$work/among.md"
+grep -q 'against C;' "$work/among.md"
+grep -qx '| T | 1/2 | 1/2 | 0/1 | 1/2 | C 1 |' "$work/among.md"
+grep -qx '| TP | 1/1 | 1/1 | 1/1 | 1/1 | - |' "$work/among.md"
+if /usr/bin/python3 "$src/scripts/bench_wins.py" "$work/s1" --pipeline A --among D 2> "$work/err"; then
+    echo "accepted a rival the bench did not score"; exit 1
+fi
+grep -q "s1/bench.json: pipeline 'D' not scored" "$work/err"
 # Bad input: exit 2, the file named.
 if /usr/bin/python3 "$src/scripts/bench_wins.py" "$work/none" --pipeline A 2> "$work/err"; then
     echo "accepted a missing bench"; exit 1
