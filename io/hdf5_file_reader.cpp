@@ -1,17 +1,14 @@
 #include "casmap/io/hdf5_util.hpp"
 
 // The read side of hdf5_util.hpp: FileReader, which turns every failure into an InputError
-// naming the file and the object, and checks the bytes HDF5 would decode unsafely first.
+// naming the file and the object, and checks the bytes HDF5 would decode unsafely first
+// (io/hdf5_file_checks.cpp).
 
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <utility>
-
-#include "casmap/io/hdf5_global_heap.hpp"
-#include "casmap/io/hdf5_object_header.hpp"
 
 namespace casmap::io::h5 {
 namespace {
@@ -134,8 +131,12 @@ void FileReader::ReadRawImpl(const std::string& dataset,
     if (!Has(dataset)) {
         throw Error(dataset, "", "required dataset is missing");
     }
+    // H5Dopen2 decodes the dataset's header messages, and so does H5Oget_info for anything
+    // beyond the basic fields (a dataset's storage size: layout, pipeline, external files).
+    CheckDatasetMessages(dataset);
     H5O_info_t info{};
-    if (H5Oget_info_by_name(file_.get(), dataset.c_str(), &info, H5P_DEFAULT) < 0 ||
+    if (H5Oget_info_by_name2(file_.get(), dataset.c_str(), &info, H5O_INFO_BASIC, H5P_DEFAULT) <
+            0 ||
         info.type != H5O_TYPE_DATASET) {
         throw Error(dataset, "", "must be a dataset");
     }
@@ -279,6 +280,7 @@ std::optional<std::string> FileReader::ReadStringDataset(const std::string& data
     if (!Has(dataset)) {
         return std::nullopt;
     }
+    CheckDatasetMessages(dataset);
     const Id d =
         Check(H5Dopen2(file_.get(), dataset.c_str(), H5P_DEFAULT), H5Dclose, "H5Dopen2 " + dataset);
     const Id type = Check(H5Dget_type(d.get()), H5Tclose, "H5Dget_type " + dataset);
@@ -335,64 +337,6 @@ std::string FileReader::ReadStringValue(hid_t object,
     read(type, value.data());
     value.resize(std::min(value.find('\0'), value.size()));
     return value;
-}
-
-// Runs `check` over the file's bytes: the image in memory, or the file at path_.
-std::optional<std::string> FileReader::CheckBytes(
-    const std::string& where,
-    const std::string& value,
-    const std::function<std::optional<std::string>(std::uint64_t, const ReadAt&)>& check) const {
-    if (image_ != nullptr) {
-        const auto* bytes = static_cast<const std::uint8_t*>(image_);
-        return check(image_size_, [&](std::uint64_t offset, std::size_t size, void* out) {
-            if (offset >= image_size_) {
-                return std::size_t{0};
-            }
-            const std::size_t n =
-                static_cast<std::size_t>(std::min<std::uint64_t>(size, image_size_ - offset));
-            std::memcpy(out, bytes + offset, n);
-            return n;
-        });
-    }
-    std::ifstream in(path_, std::ios::binary);
-    std::error_code ec;
-    const std::uintmax_t file_size = std::filesystem::file_size(path_, ec);
-    if (!in || ec) {
-        throw Error(where, value, "the file cannot be read to check it");
-    }
-    return check(file_size, [&](std::uint64_t offset, std::size_t size, void* out) {
-        in.clear();
-        in.seekg(static_cast<std::streamoff>(offset));
-        in.read(static_cast<char*>(out), static_cast<std::streamsize>(size));
-        return static_cast<std::size_t>(in.gcount());
-    });
-}
-
-void FileReader::CheckGlobalHeap(const std::string& where, const std::string& value) const {
-    if (!heap_problem_) {
-        heap_problem_ = CheckBytes(where, value, FindCorruptGlobalHeap).value_or("");
-    }
-    if (!heap_problem_->empty()) {
-        throw Error(where, value, "corrupt file: " + *heap_problem_);
-    }
-}
-
-void FileReader::CheckAttributeMessages(const std::string& object) const {
-    auto [it, fresh] = attribute_problems_.try_emplace(object);
-    if (fresh) {
-        H5O_info_t info{};
-        if (H5Oget_info_by_name2(file_.get(), object.c_str(), &info, H5O_INFO_BASIC, H5P_DEFAULT) <
-            0) {
-            it->second = "its object header cannot be read";
-        } else {
-            it->second = CheckBytes(object, "", [&](std::uint64_t size, const ReadAt& read) {
-                             return FindCorruptAttributeMessages(info.addr, size, read);
-                         }).value_or("");
-        }
-    }
-    if (!it->second.empty()) {
-        throw Error(object, "", "corrupt file: " + it->second);
-    }
 }
 
 }  // namespace casmap::io::h5

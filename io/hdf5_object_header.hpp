@@ -15,12 +15,9 @@
 #include <string>
 
 #include "casmap/io/hdf5_global_heap.hpp"  // ReadAt
+#include "casmap/io/hdf5_header_walk.hpp"  // kMaxHeaderContinuations
 
 namespace casmap::io::h5 {
-
-/// The most continuation blocks casmap follows in one object header (HDF5 has no limit; a
-/// run file's headers have none or one).
-inline constexpr int kMaxHeaderContinuations = 64;
 
 /// Walks the object header at `address` (from the superblock, which must be at byte 0; as
 /// H5Oget_info reports it) the way HDF5 lays it out: the first chunk and each continuation

@@ -240,6 +240,9 @@ private:
     /// Throws InputError naming `object` unless its attribute messages are safe for HDF5 to
     /// decode (FindCorruptAttributeMessages; checked once per object).
     void CheckAttributeMessages(const std::string& object) const;
+    /// Throws InputError naming `dataset` unless the messages H5Dopen2 decodes from its object
+    /// header are safe for HDF5 to decode (FindCorruptDatasetMessages).
+    void CheckDatasetMessages(const std::string& dataset) const;
     [[nodiscard]] std::optional<std::string> CheckBytes(
         const std::string& where,
         const std::string& value,

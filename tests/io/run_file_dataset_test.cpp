@@ -1,0 +1,397 @@
+// Run files and HDF5's dataset header decoders: before H5Dopen2, casmap checks the messages a
+// version 1 dataset header holds (datatype, dataspace, layout, filter pipeline, fill value,
+// external file list) the way HDF5 1.10.8 decodes them. Each test patches one field of a file
+// casmap wrote (HDF5 1.6 format: version 1 headers), found by walking the header here, and
+// expects the exact InputError.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "casmap/core/input_error.hpp"
+#include "casmap/io/hdf5_dataset_header.hpp"
+#include "casmap/io/hdf5_util.hpp"
+#include "casmap/io/run_file.hpp"
+#include "run_file_fixtures.hpp"
+#include "tests/temp_dir.hpp"
+
+namespace casmap::io {
+namespace {
+using test::MakeRun;
+using test::ReadBytes;
+namespace fs = std::filesystem;
+
+std::uint64_t Le(const std::string& bytes, std::size_t at, std::size_t n) {
+    std::uint64_t v = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        v |= std::uint64_t{static_cast<unsigned char>(bytes.at(at + i))} << (8 * i);
+    }
+    return v;
+}
+
+void PutLe(std::string& bytes, std::size_t at, std::size_t n, std::uint64_t v) {
+    for (std::size_t i = 0; i < n; ++i) {
+        bytes.at(at + i) = static_cast<char>((v >> (8 * i)) & 0xFFU);
+    }
+}
+
+// The object header address of `object` in the file at `path` (HDF5 reports it).
+std::uint64_t HeaderAddress(const fs::path& path, const std::string& object) {
+    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    H5O_info_t info{};
+    const herr_t got =
+        H5Oget_info_by_name2(file, object.c_str(), &info, H5O_INFO_BASIC, H5P_DEFAULT);
+    H5Fclose(file);
+    EXPECT_GE(got, 0) << object;
+    return info.addr;
+}
+
+struct Message {
+    std::uint16_t type = 0;
+    std::size_t at = 0;    // its 8-byte message header
+    std::size_t size = 0;  // its data, from at + 8
+};
+
+// The messages of the version 1 header at `header` (16-byte prefix, 8-byte message headers,
+// continuation messages of two 8-byte fields), in order.
+std::vector<Message> Messages(const std::string& bytes, std::size_t header) {
+    EXPECT_EQ(bytes.at(header), 1) << "not a version 1 object header";
+    std::vector<std::pair<std::size_t, std::size_t>> blocks = {
+        {header + 16, static_cast<std::size_t>(Le(bytes, header + 8, 4))}};
+    std::vector<Message> out;
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+        for (std::size_t pos = blocks[b].first; pos + 8 <= blocks[b].first + blocks[b].second;) {
+            const Message m{static_cast<std::uint16_t>(Le(bytes, pos, 2)), pos,
+                            static_cast<std::size_t>(Le(bytes, pos + 2, 2))};
+            if (m.type == 0x10) {
+                blocks.emplace_back(Le(bytes, pos + 8, 8), Le(bytes, pos + 16, 8));
+            }
+            out.push_back(m);
+            pos += 8 + m.size;
+        }
+    }
+    return out;
+}
+
+Message Find(const std::string& bytes, std::size_t header, std::uint16_t type) {
+    for (const Message& m : Messages(bytes, header)) {
+        if (m.type == type) {
+            return m;
+        }
+    }
+    ADD_FAILURE() << "no message of type " << type;
+    return {};
+}
+
+std::string ReadError(const std::string& bytes) {
+    try {
+        (void)ReadRunFileImage(bytes, "run.h5");
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// A run casmap wrote whose /scans/ranges_m (8 x 181 floats) is chunked and deflated.
+struct Written {
+    std::string bytes;
+    std::size_t ranges = 0;  // /scans/ranges_m's object header
+};
+
+Written WrittenRun() {
+    const casmap::test::TempDir dir("run_dataset");
+    WriteRunFile(dir / "run.h5", MakeRun(8, 181));
+    return {ReadBytes(dir / "run.h5"),
+            static_cast<std::size_t>(HeaderAddress(dir / "run.h5", "/scans/ranges_m"))};
+}
+
+std::string Expected(const std::string& rule) {
+    return "run.h5: /scans/ranges_m (corrupt file: " + rule + ")";
+}
+
+constexpr std::uint16_t kDataspace = 1;
+constexpr std::uint16_t kDatatype = 3;
+constexpr std::uint16_t kFillValue = 5;
+constexpr std::uint16_t kLayout = 8;
+constexpr std::uint16_t kPipeline = 11;
+
+TEST(RunFileDatasets, WrittenFilesPass) {
+    const Written w = WrittenRun();
+    EXPECT_EQ(ReadError(w.bytes), "");
+    // Version 3 layout, chunked (class 2), 3 dimensions (rank 2 + the element).
+    const Message layout = Find(w.bytes, w.ranges, kLayout);
+    ASSERT_EQ(w.bytes.at(layout.at + 8), 3);
+    ASSERT_EQ(w.bytes.at(layout.at + 9), 2);
+    ASSERT_EQ(w.bytes.at(layout.at + 10), 3);
+}
+
+TEST(RunFileDatasets, ADatatypeEncodingOutsideItsMessageIsAnInputError) {
+    Written w = WrittenRun();
+    const Message type = Find(w.bytes, w.ranges, kDatatype);
+    // The float datatype made an array (version 2, class 10) of rank 40: HDF5 would write 40
+    // sizes into its 32-entry table.
+    w.bytes[type.at + 8] = 0x2A;
+    w.bytes[type.at + 16] = 40;
+    EXPECT_EQ(ReadError(w.bytes), Expected("datatype message at byte " + std::to_string(type.at) +
+                                           ": datatype array rank 40 at byte 8 is above 32 (its "
+                                           "datatype's " +
+                                           std::to_string(type.size) + " bytes)"));
+}
+
+TEST(RunFileDatasets, ADataspaceShorterThanItsRankIsAnInputError) {
+    Written w = WrittenRun();
+    const Message space = Find(w.bytes, w.ranges, kDataspace);
+    ASSERT_EQ(w.bytes.at(space.at + 8), 1) << "not a version 1 dataspace";
+    w.bytes[space.at + 9] = 32;
+    const bool maxima = (w.bytes.at(space.at + 10) & 1) != 0;
+    EXPECT_EQ(ReadError(w.bytes),
+              Expected("dataspace message at byte " + std::to_string(space.at) +
+                       ": its dataspace needs " + std::to_string(8 + 32 * 8 * (maxima ? 2 : 1)) +
+                       " bytes for its rank but has " + std::to_string(space.size)));
+}
+
+TEST(RunFileDatasets, AMaximumBelowItsSizeIsAnInputError) {
+    Written w = WrittenRun();
+    const Message space = Find(w.bytes, w.ranges, kDataspace);
+    ASSERT_EQ(w.bytes.at(space.at + 9), 2);
+    // Give it maxima (flag bit 0) after the two sizes: 8 x 181 with a maximum of 4 rows. The
+    // message (8 + 2 x 8 bytes) has room only if HDF5 wrote maxima, so write them in place.
+    ASSERT_GE(space.size, 8U + 4 * 8) << "no room for maxima";
+    w.bytes[space.at + 10] = 1;
+    PutLe(w.bytes, space.at + 8 + 8 + 16, 8, 4);
+    PutLe(w.bytes, space.at + 8 + 8 + 24, 8, 181);
+    EXPECT_EQ(ReadError(w.bytes), Expected("dataspace message at byte " + std::to_string(space.at) +
+                                           ": its maximum size 4 of dimension 0 is below its "
+                                           "size 8"));
+}
+
+TEST(RunFileDatasets, ACompactLayoutLargerThanItsMessageIsAnInputError) {
+    // HDF5 1.10.8 copies a compact layout's data (size: 2 bytes in version 3) with memcpy from
+    // the message whatever the message's size.
+    Written w = WrittenRun();
+    const Message layout = Find(w.bytes, w.ranges, kLayout);
+    w.bytes[layout.at + 9] = 0;  // compact
+    PutLe(w.bytes, layout.at + 10, 2, 4096);
+    EXPECT_EQ(ReadError(w.bytes),
+              Expected("layout message at byte " + std::to_string(layout.at) +
+                       ": its compact data of 4096 bytes does not fit the " +
+                       std::to_string(layout.size - 4) + " bytes after its size"));
+}
+
+TEST(RunFileDatasets, AChunkOfTheWrongRankIsAnInputError) {
+    Written w = WrittenRun();
+    const Message layout = Find(w.bytes, w.ranges, kLayout);
+    w.bytes[layout.at + 10] = 2;  // the dataspace has rank 2: the chunk needs 3 dimensions
+    EXPECT_EQ(ReadError(w.bytes),
+              Expected("layout message at byte " + std::to_string(layout.at) +
+                       ": its chunk has 2 dimensions but a dataspace of rank 2 needs 3"));
+}
+
+TEST(RunFileDatasets, AChunkDimensionOfZeroIsAnInputError) {
+    Written w = WrittenRun();
+    const Message layout = Find(w.bytes, w.ranges, kLayout);
+    // Version 3 chunked: version, class, dimensionality, the B-tree's address, 4 bytes each.
+    PutLe(w.bytes, layout.at + 8 + 3 + 8 + 4, 4, 0);
+    EXPECT_EQ(ReadError(w.bytes), Expected("layout message at byte " + std::to_string(layout.at) +
+                                           ": its chunk dimension 1 is 0"));
+}
+
+TEST(RunFileDatasets, ALayoutFieldPastItsMessageIsAnInputError) {
+    Written w = WrittenRun();
+    const Message layout = Find(w.bytes, w.ranges, kLayout);
+    // 33 dimensions (HDF5's most) of 4 bytes from byte 11 of a 24-byte message.
+    w.bytes[layout.at + 10] = 33;
+    EXPECT_EQ(
+        ReadError(w.bytes),
+        Expected("layout message at byte " + std::to_string(layout.at) +
+                 ": chunk dimensions at byte " + std::to_string(11 + 4 * ((layout.size - 11) / 4)) +
+                 " overrun its " + std::to_string(layout.size) + " bytes"));
+}
+
+TEST(RunFileDatasets, ContiguousDataPastTheEndOfTheFileIsAnInputError) {
+    Written w = WrittenRun();
+    const Message layout = Find(w.bytes, w.ranges, kLayout);
+    // Made contiguous (class 1: address, size) 16 bytes before the superblock's end-of-file
+    // address (superblock version 0: the third address after byte 24), 64 bytes long.
+    ASSERT_EQ(w.bytes.at(8), 0) << "not a version 0 superblock";
+    const std::uint64_t eof = Le(w.bytes, 24 + 16, 8);
+    ASSERT_EQ(eof, w.bytes.size());
+    w.bytes[layout.at + 9] = 1;
+    PutLe(w.bytes, layout.at + 10, 8, eof - 16);
+    PutLe(w.bytes, layout.at + 18, 8, 64);
+    EXPECT_EQ(
+        ReadError(w.bytes),
+        Expected("layout message at byte " + std::to_string(layout.at) +
+                 ": its contiguous data at byte " + std::to_string(eof - 16) +
+                 " of 64 bytes ends past the file's end-of-file address " + std::to_string(eof)));
+}
+
+// casmap's deflate (and shuffle) filters in a version 1 pipeline: version, count, 6 reserved;
+// per filter id, name length, flags, number of values, the name padded to 8, the values.
+TEST(RunFileDatasets, AFilterNameWithoutItsNulIsAnInputError) {
+    Written w = WrittenRun();
+    const Message pipeline = Find(w.bytes, w.ranges, kPipeline);
+    ASSERT_EQ(w.bytes.at(pipeline.at + 8), 1) << "not a version 1 pipeline";
+    const std::size_t name = Le(w.bytes, pipeline.at + 8 + 8 + 2, 2);
+    ASSERT_GT(name, 0U);
+    const std::size_t first = pipeline.at + 8 + 8 + 8;
+    for (std::size_t k = 0; k < name; ++k) {
+        w.bytes[first + k] = 'x';
+    }
+    EXPECT_EQ(ReadError(w.bytes),
+              Expected("filter pipeline message at byte " + std::to_string(pipeline.at) +
+                       ": filter 0's name is not NUL-terminated within its " +
+                       std::to_string(name) + " bytes"));
+}
+
+TEST(RunFileDatasets, FilterValuesPastTheirMessageAreAnInputError) {
+    Written w = WrittenRun();
+    const Message pipeline = Find(w.bytes, w.ranges, kPipeline);
+    const std::size_t name = Le(w.bytes, pipeline.at + 8 + 8 + 2, 2);
+    PutLe(w.bytes, pipeline.at + 8 + 8 + 6, 2, 4095);
+    EXPECT_EQ(ReadError(w.bytes),
+              Expected("filter pipeline message at byte " + std::to_string(pipeline.at) +
+                       ": filter 0's 4095 client data values at byte " + std::to_string(16 + name) +
+                       " overrun its " + std::to_string(pipeline.size) + " bytes"));
+}
+
+TEST(RunFileDatasets, AFillValueLargerThanItsMessageIsAnInputError) {
+    Written w = WrittenRun();
+    const Message fill = Find(w.bytes, w.ranges, kFillValue);
+    // Version 2: allocation time, fill time, defined, then the size and the value.
+    ASSERT_EQ(w.bytes.at(fill.at + 8), 2) << "not a version 2 fill value message";
+    w.bytes[fill.at + 8 + 3] = 1;
+    PutLe(w.bytes, fill.at + 8 + 4, 4, 4096);
+    EXPECT_EQ(ReadError(w.bytes),
+              Expected("fill value message at byte " + std::to_string(fill.at) +
+                       ": its fill value of 4096 bytes does not fit the " +
+                       std::to_string(fill.size - 8) + " bytes after its size"));
+}
+
+TEST(RunFileDatasets, MoreExternalFilesThanItsSlotsIsAnInputError) {
+    // The fill value message (8 bytes) made an external file list: version 1, 3 reserved
+    // bytes, 1 slot allocated, 5 used. HDF5 would write 5 slots into an array of 1.
+    Written w = WrittenRun();
+    const Message fill = Find(w.bytes, w.ranges, kFillValue);
+    ASSERT_GE(fill.size, 8U);
+    PutLe(w.bytes, fill.at, 2, 7);
+    w.bytes[fill.at + 8] = 1;
+    PutLe(w.bytes, fill.at + 12, 2, 1);
+    PutLe(w.bytes, fill.at + 14, 2, 5);
+    EXPECT_EQ(ReadError(w.bytes),
+              Expected("external file list message at byte " + std::to_string(fill.at) +
+                       ": it uses 5 slots of its 1 allocated"));
+}
+
+std::optional<std::string> CheckDataset(const std::string& bytes, std::uint64_t header) {
+    return h5::FindCorruptDatasetMessages(
+        header, bytes.size(), [&](std::uint64_t at, std::size_t n, void* out) {
+            const std::size_t got =
+                at >= bytes.size() ? 0 : std::min<std::size_t>(n, bytes.size() - at);
+            std::memcpy(out, bytes.data() + at, got);
+            return got;
+        });
+}
+
+// Valid files from another writer pass: h5py (HDF5 1.10.8) in the 1.6 format (version 1
+// headers, every dataset walked: contiguous, compact, chunked with deflate, shuffle and
+// Fletcher-32, unlimited maxima, fill values, 2-D, fixed and variable-length strings, a
+// committed datatype, a null dataspace, a scalar) and the latest (version 2 headers, left to
+// their checksums); a run file of each reads.
+TEST(RunFileDatasets, FilesWrittenByH5pyPass) {
+    const casmap::test::TempDir dir("run_dataset_h5py");
+    int status = 0;
+    const std::string out = test::RunPython(dir.Path(), R"PY(
+import h5py, numpy as np
+for libver in ["earliest", "latest"]:
+    with h5py.File(")PY" + dir.Path().string() + R"PY(/" + libver + ".h5", "w", libver=libver) as f:
+        f.attrs["casmap_run_format_version"] = np.int32(2)
+        f["config_yaml"] = "seed: 1\n"
+        f["scans/stamp_s"] = np.array([0.0, 1 / 75])
+        f.create_dataset("scans/ranges_m", data=np.full((2, 181), 2.0, np.float32),
+                         chunks=(1, 181), compression="gzip", shuffle=True, fletcher32=True)
+        f.create_dataset("scans/raw", data=np.full((2, 181), 2000, np.uint16), chunks=(2, 64),
+                         maxshape=(None, 181), compression="gzip", fillvalue=7)
+        f.create_dataset("scans/status", data=np.zeros((2, 181), np.uint8))
+        f["scans"].attrs["start_angle_rad"] = -np.pi / 2
+        f["scans"].attrs["angle_step_rad"] = np.pi / 180
+        f["scans"].attrs["beam_period_s"] = 1 / 75 / 360
+        f["poses/stamp_s"] = np.array([0.0, 1.0])
+        f["poses/xyz_m"] = np.zeros((2, 3))
+        f["poses/quat_xyzw"] = np.array([[0, 0, 0, 1.0], [0, 0, 0, 1.0]])
+        dcpl = h5py.h5p.create(h5py.h5p.DATASET_CREATE)
+        dcpl.set_layout(h5py.h5d.COMPACT)
+        space = h5py.h5s.create_simple((4, 5))
+        h5py.h5d.create(f.id, b"compact", h5py.h5t.NATIVE_DOUBLE, space, dcpl=dcpl).write(
+            h5py.h5s.ALL, h5py.h5s.ALL, np.arange(20.0).reshape(4, 5))
+        f["fixed"] = np.array([b"abc", b"defgh"])
+        f.create_dataset("texts", data=["a", "bc"], dtype=h5py.string_dtype())
+        f["t"] = np.dtype("<i2")
+        f.create_dataset("committed", data=np.arange(6, dtype=np.int16), dtype=f["t"])
+        f.create_dataset("empty", data=h5py.Empty("f4"))
+        f["scalar"] = 3.5
+        f.create_dataset("unwritten", shape=(100, 100), dtype="f8")
+        for name in ["config_yaml", "scans/stamp_s", "scans/ranges_m", "scans/raw",
+                     "scans/status", "compact", "fixed", "texts", "committed", "empty",
+                     "scalar", "unwritten"]:
+            print(libver, name, h5py.h5o.get_info(f[name].id).addr)
+)PY",
+                                            &status);
+    ASSERT_EQ(status, 0) << out;
+    std::istringstream lines(out);
+    std::string libver;
+    std::string name;
+    std::uint64_t header = 0;
+    int checked = 0;
+    while (lines >> libver >> name >> header) {
+        const std::string bytes = ReadBytes(dir / (libver + ".h5"));
+        EXPECT_EQ(CheckDataset(bytes, header), std::nullopt) << libver << " " << name;
+        EXPECT_EQ(bytes.at(header), libver == "earliest" ? 1 : 'O') << libver << " " << name;
+        ++checked;
+    }
+    EXPECT_EQ(checked, 24) << out;
+    for (const char* file : {"earliest.h5", "latest.h5"}) {
+        EXPECT_EQ(ReadError(ReadBytes(dir / file)), "") << file;
+    }
+}
+
+// A dataset whose datatype is committed: HDF5 reads the datatype message in the committed
+// type's own header (H5O__shared_read), and so does the check.
+TEST(RunFileDatasets, ASharedDatatypeIsCheckedWhereItIsCommitted) {
+    const casmap::test::TempDir dir("run_dataset_committed");
+    int status = 0;
+    const std::string out = test::RunPython(dir.Path(), R"PY(
+import h5py, numpy as np
+with h5py.File(")PY" + (dir / "c.h5").string() + R"PY(", "w", libver="earliest") as f:
+    f["t"] = np.dtype("<i2")
+    f.create_dataset("d", data=np.arange(6, dtype=np.int16), dtype=f["t"])
+    print(h5py.h5o.get_info(f["d"].id).addr, h5py.h5o.get_info(f["t"].id).addr)
+)PY",
+                                            &status);
+    ASSERT_EQ(status, 0) << out;
+    std::istringstream fields(out);
+    std::size_t dataset = 0;
+    std::size_t committed = 0;
+    fields >> dataset >> committed;
+    std::string bytes = ReadBytes(dir / "c.h5");
+    const Message reference = Find(bytes, dataset, kDatatype);
+    ASSERT_EQ(bytes.at(reference.at + 4) & 0x02, 0x02) << "not a shared datatype";
+    EXPECT_EQ(CheckDataset(bytes, dataset), std::nullopt);
+    // The committed type made an array (version 2, class 10) of rank 33.
+    const Message type = Find(bytes, committed, kDatatype);
+    bytes[type.at + 8] = 0x2A;
+    bytes[type.at + 16] = 33;
+    EXPECT_EQ(CheckDataset(bytes, dataset),
+              "datatype message at byte " + std::to_string(type.at) +
+                  ": datatype array rank 33 at byte 8 is above 32 (its datatype's " +
+                  std::to_string(type.size) + " bytes)");
+}
+
+}  // namespace
+}  // namespace casmap::io
