@@ -67,12 +67,19 @@ void CheckOutputPath(const fs::path& path, const std::string& field, bool create
                              path.empty() ? "needs a file name" : "is a folder, not a file");
     }
     const fs::path dir = FolderOf(path);
+    std::error_code create_ec;
     if (create_parent && !fs::exists(dir, ec)) {
-        fs::create_directories(dir, ec);
+        fs::create_directories(dir, create_ec);
     }
     if (!fs::is_directory(dir, ec)) {
-        throw MakeInputError(path.string(), field, "",
-                             "folder " + dir.string() + " does not exist");
+        // Say why: a file in the way, a folder that could not be made, or one that is missing.
+        std::string why = "folder " + dir.string() + " does not exist";
+        if (fs::exists(dir, ec)) {
+            why = dir.string() + " is not a folder";
+        } else if (create_ec) {
+            why = "folder " + dir.string() + " cannot be created: " + create_ec.message();
+        }
+        throw MakeInputError(path.string(), field, "", why);
     }
     if (access(dir.c_str(), W_OK) != 0) {
         throw MakeInputError(path.string(), field, "",

@@ -83,6 +83,25 @@ TEST(OutputSet, BadPathsFailBeforeAnyWork) {
     }
 }
 
+// The message says why the folder is unusable: "does not exist" for a file in the way or a
+// folder that could not be created sent users looking for a missing folder.
+TEST(OutputSet, UnusableFolderSaysWhy) {
+    const fs::path dir = FreshDir("why");
+    std::ofstream(dir / "afile") << "x";
+    EXPECT_THAT([&] { CheckOutputPath(dir / "afile" / "e.tiff", "--out"); },
+                ::testing::ThrowsMessage<InputError>(
+                    HasSubstr("--out (" + (dir / "afile").string() + " is not a folder)")));
+    EXPECT_THAT([&] { CheckOutputPath(dir / "afile" / "e.tiff", "--out", true); },
+                ::testing::ThrowsMessage<InputError>(HasSubstr("afile is not a folder)")));
+    EXPECT_THAT([&] { CheckOutputPath(dir / "afile" / "sub" / "e.tiff", "--out", true); },
+                ::testing::ThrowsMessage<InputError>(HasSubstr(
+                    "folder " + (dir / "afile" / "sub").string() + " cannot be created: ")));
+    EXPECT_THAT([&] { CheckOutputPath(dir / "gone" / "e.tiff", "--out"); },
+                ::testing::ThrowsMessage<InputError>(HasSubstr("gone does not exist)")));
+    CheckOutputPath(dir / "new" / "e.tiff", "--out", true);
+    EXPECT_TRUE(fs::is_directory(dir / "new"));
+}
+
 TEST(OutputSet, FolderReplacesTheOldFolderWhole) {
     const fs::path dir = FreshDir("folder");
     fs::create_directories(dir / "bench" / "runs");
