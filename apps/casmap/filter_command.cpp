@@ -84,7 +84,8 @@ void AddFilterCommand(CLI::App& app, CommonOptions& common) {
                     "filter-parameter preset: config/presets/NAME.yaml (paper, tuned) or a file");
     sub->add_option("--set", opt->sets,
                     "filter parameter NAME=VALUE (repeatable; overrides --preset)");
-    sub->add_option("--out", opt->out, "output OUT.tiff (also OUT.png; OUT_classes.* for cas)")
+    sub->add_option("--out", opt->out,
+                    "output OUT.tiff (also OUT.png; OUT_classes.* for the cas methods)")
         ->required();
     AddThreadsOption(sub, common);
     sub->callback([opt] { RunFilterCommand(*opt); });

@@ -80,8 +80,8 @@ void AddMapCommand(CLI::App& app, CommonOptions& common) {
         ->capture_default_str();
     sub->add_option("--set", opt->set,
                     "NAME=VALUE of the pre-filter run (shadow.<field>, range_jump.<field>, "
-                    "sweep_jump.<field>) or of the Kalman mapper (kalman.<field>); repeatable "
-                    "(docs/commands/map.md)");
+                    "sweep_jump.<field>) or of the mapper mode run (kalman.<field>, "
+                    "consensus.<field>); repeatable (docs/commands/map.md)");
     AddThreadsOption(sub, common);
     sub->callback([opt] { RunMap(*opt); });
 }
