@@ -15,8 +15,6 @@
 namespace casmap::mapper {
 namespace {
 
-constexpr const char* kWhere = "active window";
-
 std::int64_t Mod(std::int64_t a, std::int64_t n) {
     const std::int64_t r = a % n;
     return r < 0 ? r + n : r;
@@ -32,51 +30,6 @@ double HeadingOf(const core::Pose& p) {
 
 }  // namespace
 
-void ActiveWindowConfig::Validate() const {
-    const core::Check check(kWhere);
-    const int k = cas.k;
-    check.That(k >= 1, "cas.k", k, ">= 1");
-    check.That(rows >= 2 * k + 2, "rows", rows, ">= 2 k + 2 (room for a filtered row's window)");
-    check.That(cols >= 2 * k + 1, "cols", cols, ">= 2 k + 1");
-    check.That(
-        m >= k + 1 && m <= rows - k, "m", m,
-        "in [k + 1, rows - k]: the filtered row R - m and its k neighbours lie in the window");
-    check.That(std::isfinite(cell_m) && cell_m > 0.0, "cell_m", cell_m, "finite and > 0");
-    check.That(std::isfinite(origin_x_m), "origin_x_m", origin_x_m, "finite");
-    check.That(std::isfinite(origin_y_m), "origin_y_m", origin_y_m, "finite");
-    check.That(std::isfinite(heading_step_rad) && heading_step_rad > 0.0 &&
-                   heading_step_rad <= std::numbers::pi / 2.0,
-               "heading_step_rad", heading_step_rad, "in (0, pi/2]");
-    check.That(std::isfinite(delta_l_m) && delta_l_m >= 0.0, "delta_l_m", delta_l_m,
-               "finite and >= 0");
-    check.That(a >= 1, "a", a, "a positive integer");
-    check.That(std::isfinite(scan_period_s) && scan_period_s > 0.0, "scan_period_s", scan_period_s,
-               "finite and > 0");
-    check.That(cas.a == a, "cas.a", cas.a, "must equal a (Eq. 8 uses the mapper's increment)");
-    check.That(cas.cell_m == cell_m, "cas.cell_m", cas.cell_m, "must equal cell_m (Eq. 8 s)");
-    check.That(cas.normalise == Normalise::kWindow, "cas.normalise", 1.0,
-               "window: a whole-map maximum does not exist on a moving window");
-    check.That(max_rows_per_scan >= 1, "max_rows_per_scan", max_rows_per_scan, ">= 1");
-    check.That(std::isfinite(obstacle_cell_m) && obstacle_cell_m > 0.0, "obstacle_cell_m",
-               obstacle_cell_m, "finite and > 0");
-}
-
-int LookAheadRows(const ActiveWindowConfig& config,
-                  double height_m,
-                  double pitch_rad,
-                  double max_height_m) {
-    const int k = config.cas.k;
-    const double tan_p = std::tan(pitch_rad);
-    int f = k;  // nearest admissible filtered row
-    if (tan_p > 0.0 && height_m > max_height_m) {
-        const double d = (height_m - max_height_m) / tan_p;
-        const double rows = std::floor(d / config.cell_m) - k - 1;
-        f = static_cast<int>(
-            std::clamp(rows, static_cast<double>(k), static_cast<double>(config.rows - k - 1)));
-    }
-    return config.rows - f;
-}
-
 ActiveWindow::ActiveWindow(const ActiveWindowConfig& config)
     : config_(config), obstacles_(config.obstacle_cell_m, config.origin_x_m, config.origin_y_m) {
     config_.Validate();
@@ -90,6 +43,10 @@ ActiveWindow::ActiveWindow(const ActiveWindowConfig& config)
     registered_back_.assign(n, 0);
     row_data_.assign(static_cast<std::size_t>(config_.rows), 0);
     row_data_back_.assign(static_cast<std::size_t>(config_.rows), 0);
+    if (config_.consensus) {
+        cons_.Assign(n);
+        cons_back_.Assign(n);
+    }
     const int span = 2 * config_.cas.k + 1;
     band_h_ = core::MapF(span, config_.cols, 0.0F);
     band_c_ = core::MapF(span, config_.cols, 0.0F);
@@ -115,6 +72,9 @@ void ActiveWindow::ClearRow(std::int64_t a) {
     std::fill_n(h_.begin() + static_cast<std::ptrdiff_t>(off), config_.cols, 0.0F);
     std::fill_n(c_.begin() + static_cast<std::ptrdiff_t>(off), config_.cols, 0.0F);
     std::fill_n(registered_.begin() + static_cast<std::ptrdiff_t>(off), config_.cols, 0);
+    if (!cons_.empty()) {
+        cons_.Clear(off, static_cast<std::size_t>(config_.cols));
+    }
 }
 
 void ActiveWindow::ClearCol(std::int64_t b) {
@@ -124,6 +84,9 @@ void ActiveWindow::ClearCol(std::int64_t b) {
         h_[s] = 0.0F;
         c_[s] = 0.0F;
         registered_[s] = 0;
+        if (!cons_.empty()) {
+            cons_.Clear(s, 1);
+        }
     }
 }
 
@@ -132,6 +95,9 @@ void ActiveWindow::Place(double heading_rad, std::int64_t a0, std::int64_t b0) {
     std::fill(c_.begin(), c_.end(), 0.0F);
     std::fill(registered_.begin(), registered_.end(), 0);
     std::fill(row_data_.begin(), row_data_.end(), 0);
+    if (!cons_.empty()) {
+        cons_.Clear(0, h_.size());
+    }
     heading_rad_ = heading_rad;
     cos_ = std::cos(heading_rad);
     sin_ = std::sin(heading_rad);
@@ -199,6 +165,7 @@ void ActiveWindow::Resample(double heading_rad, std::int64_t a0, std::int64_t b0
     const std::int64_t old_col_slot0 = Mod(b0_, cols);
     std::int64_t first_pending = -1;  // first row behind R-m holding an unregistered cell
     const std::int64_t first_row = filter_index_ - k;
+    const bool consensus = !cons_.empty();
     for (std::int64_t i = 0; i < rows; ++i) {
         const std::int64_t a = a0 + i;
         const auto to_slot = static_cast<std::size_t>(Mod(a, rows));
@@ -210,6 +177,9 @@ void ActiveWindow::Resample(double heading_rad, std::int64_t a0, std::int64_t b0
             std::fill_n(h_to, cols, 0.0F);
             std::fill_n(c_to, cols, 0.0F);
             std::fill_n(r_to, cols, std::uint8_t{0});
+            if (consensus) {
+                cons_back_.Clear(to_row, static_cast<std::size_t>(cols));
+            }
             row_data_back_[to_slot] = 0;
         }
         if (i < first_row ||
@@ -240,6 +210,9 @@ void ActiveWindow::Resample(double heading_rad, std::int64_t a0, std::int64_t b0
             h_to[t] = h_[from];
             c_to[t] = c_[from];
             r_to[t] = registered_[from];
+            if (consensus) {
+                cons_back_.CopyCell(cons_, from, to_row + t);
+            }
             if (first_pending < 0 && i >= k && i < filter_index_ && c_[from] > 0.0F &&
                 registered_[from] == 0) {
                 first_pending = i;
@@ -250,6 +223,7 @@ void ActiveWindow::Resample(double heading_rad, std::int64_t a0, std::int64_t b0
     c_.swap(c_back_);
     registered_.swap(registered_back_);
     row_data_.swap(row_data_back_);
+    cons_.swap(cons_back_);
     heading_rad_ = heading_rad;
     cos_ = std::cos(heading_rad);
     sin_ = std::sin(heading_rad);
@@ -310,7 +284,12 @@ void ActiveWindow::MapPoint(const Eigen::Vector3d& p, double dz_max_m) {
     }
     row_data_[static_cast<std::size_t>(Mod(a, config_.rows))] = 1;
     const std::size_t slot = Slot(a, static_cast<std::int64_t>(fb));
-    detail::UpdateCell(h_[slot], c_[slot], p.z(), dz_max_m, config_.a);
+    if (cons_.empty()) {
+        detail::UpdateCell(h_[slot], c_[slot], p.z(), dz_max_m, config_.a);
+    } else {
+        cons_.Update(slot, h_[slot], c_[slot], p.z(), dz_max_m, config_.a, false,
+                     *config_.consensus);
+    }
     ++stats_.beams.beams_mapped;
 }
 
@@ -370,7 +349,13 @@ void ActiveWindow::FilterDueRows() {
 }
 
 std::span<const FilteredRow> ActiveWindow::AddScan(const core::Scan& scan,
-                                                   const core::Trajectory& world_T_sensor) {
+                                                   const core::Trajectory& world_T_sensor,
+                                                   std::span<const std::uint8_t> keep) {
+    if (!keep.empty() && keep.size() != scan.beams.size()) {
+        throw MakeInputError(
+            "active window", "keep labels", std::to_string(keep.size()),
+            "must have one entry per beam (" + std::to_string(scan.beams.size()) + ")");
+    }
     n_filtered_ = 0;
     ++stats_.scans;
     const std::optional<core::Pose> pose =
@@ -385,7 +370,8 @@ std::span<const FilteredRow> ActiveWindow::AddScan(const core::Scan& scan,
     dirs_.Update(scan);
     detail::ForEachBeamPoint(
         scan, world_T_sensor, dirs_, config_.scan_period_s, config_.delta_l_m, stats_.beams,
-        [this](const Eigen::Vector3d& p_world, double dz_max_m) { MapPoint(p_world, dz_max_m); });
+        [this](const Eigen::Vector3d& p_world, double dz_max_m) { MapPoint(p_world, dz_max_m); },
+        keep);
     FilterDueRows();
     return {filtered_.data(), n_filtered_};
 }

@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -24,6 +25,8 @@
 #include "casmap/core/pose.hpp"
 #include "casmap/core/scan.hpp"
 #include "casmap/core/trajectory.hpp"
+#include "casmap/mapper/consensus.hpp"
+#include "casmap/mapper/consensus_cells.hpp"
 #include "casmap/mapper/filter_params.hpp"
 #include "casmap/mapper/filters.hpp"
 #include "casmap/mapper/obstacle_map.hpp"
@@ -59,6 +62,10 @@ struct ActiveWindowConfig {
     // filtered over the following scans instead of in one (bounds the per-scan cost; the
     // vehicle adds about half a row per scan at 1 m/s, so a backlog clears quickly).
     int max_rows_per_scan = 4;
+    // Unset: Eq. 6 (the paper). Set: the consensus cell height (mapper/consensus.hpp), as
+    // TerrainMapperConfig::consensus: a cell whose heights lie within spread_m over at least
+    // min_hits points holds their mean, else Eq. 6's height; certainty is Eq. 5's either way.
+    std::optional<ConsensusConfig> consensus;
     void Validate() const;  // throws InputError naming "active window.<field>"
 };
 
@@ -83,7 +90,7 @@ struct FilteredRow {
 };
 
 struct ActiveWindowStats {
-    MapperStats beams;                // seen / not ok / no pose / outside / mapped
+    MapperStats beams;                // seen / not ok / rejected / no pose / outside / mapped
     std::uint64_t beams_behind = 0;   // landed in the window behind row R-m: not mapped
     std::uint64_t beams_late = 0;     // mapped into rows R-m..R-m+k-1 after a neighbour row
                                       // was filtered (m too small for the scene)
@@ -101,8 +108,11 @@ public:
     /// Moves the window to the scanner pose at the scan's beam-0 time, maps every beam (Eq.
     /// 1-6, per-beam poses) that lands in rows R-m..R-1, then filters and registers each row
     /// that reached index R-m. Returns the rows filtered by this call (valid until the next).
+    /// `keep` (empty, or one label per beam, e.g. a SweepJumpStream's) skips beams labelled 0,
+    /// counted in stats().beams.beams_rejected; InputError if its size differs from the scan's.
     std::span<const FilteredRow> AddScan(const core::Scan& scan,
-                                         const core::Trajectory& world_T_sensor);
+                                         const core::Trajectory& world_T_sensor,
+                                         std::span<const std::uint8_t> keep = {});
 
     /// Moves the window so the scanner at `world_T_sensor` is in row 0, column C/2,
     /// re-anchoring (resampling) the frame if the heading left the tolerance.
@@ -144,6 +154,9 @@ private:
     // Per row slot: 0 means every cell of the row is zero (and unregistered), so clearing
     // and resampling can skip it.
     std::vector<std::uint8_t> row_data_, row_data_back_;
+    // Consensus mode only (empty otherwise): per slot, cleared with its row or column and
+    // carried by resampling with the cell.
+    detail::ConsensusCells cons_, cons_back_;
     bool placed_ = false;
     double heading_rad_ = 0.0;
     double cos_ = 1.0, sin_ = 0.0;

@@ -4,8 +4,8 @@
 
 namespace casmap::mapper {
 
-void ConsensusConfig::Validate() const {
-    const core::Check check("mapper");
+void ConsensusConfig::Validate(const std::string& where) const {
+    const core::Check check(where);
     check.NonNegative("consensus.spread_m", spread_m, "must be finite and >= 0");
     check.That(min_hits >= 2, "consensus.min_hits", min_hits, "must be an integer >= 2");
 }

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <string>
+
 namespace casmap::mapper {
 
 /// The consensus cell height, an option beside the paper's Eq. 6 (docs/paper-notes.md
@@ -11,7 +13,9 @@ namespace casmap::mapper {
 struct ConsensusConfig {
     double spread_m = 0.02;  // largest max - min of a cell's heights that counts as one surface
     int min_hits = 2;        // fewest points for a mean (a single point is its own Eq. 6 height)
-    void Validate() const;   // throws InputError naming consensus.<field>
+    /// Throws InputError naming consensus.<field>, the message opened by `where` (the owner:
+    /// "mapper", "active window").
+    void Validate(const std::string& where = "mapper") const;
 };
 
 }  // namespace casmap::mapper

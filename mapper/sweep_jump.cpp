@@ -15,16 +15,9 @@
 namespace casmap::mapper {
 namespace {
 
-// One scan's beams in the world: origin, unit direction, range and whether the beam counts.
-struct WorldBeams {
-    std::vector<Eigen::Vector3d> origin, direction;
-    std::vector<double> range;
-    std::vector<std::uint8_t> valid;
-};
-
-WorldBeams ToWorld(const core::Scan& scan, const core::Trajectory& world_T_sensor) {
+SweepJumpBeams ToWorld(const core::Scan& scan, const core::Trajectory& world_T_sensor) {
     const std::size_t n = scan.beams.size();
-    WorldBeams w;
+    SweepJumpBeams w;
     w.origin.resize(n);
     w.direction.resize(n);
     w.range.assign(n, 0.0);
@@ -80,9 +73,9 @@ bool UsableNeighbour(const core::Scan& scan,
 }
 
 // Labels of the middle scan `cur` from two neighbour scans, one before and one after it.
-std::vector<std::uint8_t> Labels(const WorldBeams& before,
-                                 const WorldBeams& cur,
-                                 const WorldBeams& after,
+std::vector<std::uint8_t> Labels(const SweepJumpBeams& before,
+                                 const SweepJumpBeams& cur,
+                                 const SweepJumpBeams& after,
                                  const SweepJumpConfig& config) {
     std::vector<std::uint8_t> keep(cur.valid.size(), 1);
     const double cos_max = std::cos(config.max_angle_deg * std::numbers::pi / 180.0);
@@ -136,6 +129,34 @@ void SweepJumpConfig::Validate() const {
     check.That(reach >= 1 && reach <= 3, "sweep_jump.reach", reach, "allowed: 1, 2 or 3");
 }
 
+SweepJumpBeams SweepJumpWorldBeams(const core::Scan& scan, const core::Trajectory& world_T_sensor) {
+    return ToWorld(scan, world_T_sensor);
+}
+
+std::vector<std::uint8_t> SweepJumpScanLabels(const core::Scan& scan,
+                                              const SweepJumpBeams& beams,
+                                              std::span<const SweepJumpNeighbour> before,
+                                              std::span<const SweepJumpNeighbour> after,
+                                              double median_gap_s,
+                                              const SweepJumpConfig& config) {
+    std::vector<std::uint8_t> labels(beams.valid.size(), 1);
+    const std::size_t reach = std::min(before.size(), after.size());
+    for (std::size_t step = 1; step <= reach; ++step) {
+        const SweepJumpNeighbour& b = before[step - 1];
+        const SweepJumpNeighbour& a = after[step - 1];
+        if (b.scan == nullptr || a.scan == nullptr ||
+            !UsableNeighbour(scan, *b.scan, step, median_gap_s) ||
+            !UsableNeighbour(scan, *a.scan, step, median_gap_s)) {
+            continue;
+        }
+        const std::vector<std::uint8_t> keep = Labels(*b.beams, beams, *a.beams, config);
+        for (std::size_t i = 0; i < keep.size(); ++i) {
+            labels[i] &= keep[i];
+        }
+    }
+    return labels;
+}
+
 std::vector<std::vector<std::uint8_t>> SweepJumpLabels(std::span<const core::Scan> scans,
                                                        const core::Trajectory& world_T_sensor,
                                                        const SweepJumpConfig& config) {
@@ -147,33 +168,29 @@ std::vector<std::vector<std::uint8_t>> SweepJumpLabels(std::span<const core::Sca
     const double median_gap_s = MedianGap(scans);
     const auto reach = static_cast<std::size_t>(config.reach);
     // A sliding window of world beams, scans [first, first + window.size()), each computed once.
-    std::deque<WorldBeams> window;
+    std::deque<SweepJumpBeams> window;
     std::size_t first = 0;
-    const auto world = [&](std::size_t j) -> const WorldBeams& {
+    const auto world = [&](std::size_t j) -> const SweepJumpBeams& {
         while (first + window.size() <= j) {
             window.push_back(ToWorld(scans[first + window.size()], world_T_sensor));
         }
         return window[j - first];
     };
+    std::vector<SweepJumpNeighbour> before(reach);
+    std::vector<SweepJumpNeighbour> after(reach);
     for (std::size_t k = 0; k < scans.size(); ++k) {
         while (first + reach < k) {
             window.pop_front();
             ++first;
         }
-        const WorldBeams& cur = world(k);
-        labels[k].assign(cur.valid.size(), 1);
         for (std::size_t step = 1; step <= reach; ++step) {
-            if (k < step || k + step >= scans.size() ||
-                !UsableNeighbour(scans[k], scans[k - step], step, median_gap_s) ||
-                !UsableNeighbour(scans[k], scans[k + step], step, median_gap_s)) {
-                continue;
-            }
-            const std::vector<std::uint8_t> keep =
-                Labels(world(k - step), world(k), world(k + step), config);
-            for (std::size_t i = 0; i < keep.size(); ++i) {
-                labels[k][i] &= keep[i];
-            }
+            before[step - 1] = k < step ? SweepJumpNeighbour{}
+                                        : SweepJumpNeighbour{&scans[k - step], &world(k - step)};
+            after[step - 1] = k + step >= scans.size()
+                                  ? SweepJumpNeighbour{}
+                                  : SweepJumpNeighbour{&scans[k + step], &world(k + step)};
         }
+        labels[k] = SweepJumpScanLabels(scans[k], world(k), before, after, median_gap_s, config);
     }
     return labels;
 }

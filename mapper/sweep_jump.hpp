@@ -22,6 +22,7 @@
 // of a pitching vehicle seen 7-12 degrees from the horizontal. docs/paper-notes.md
 // "Sweep jump".
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -42,6 +43,39 @@ struct SweepJumpConfig {
                                      // scans (a slow sweep over an edge) has mixed neighbours
     void Validate() const;           // throws InputError naming the field ("sweep_jump.<field>")
 };
+
+/// One scan's beams in the world, as the test needs them: origin and unit direction of each
+/// beam's line of sight (the pose at the beam's own time), its range, and whether it counts
+/// (status kOk, a finite positive range and a pose at its time).
+struct SweepJumpBeams {
+    std::vector<Eigen::Vector3d> origin, direction;
+    std::vector<double> range;
+    std::vector<std::uint8_t> valid;
+};
+
+/// The world beams of `scan` through `world_T_sensor` (poses covering its beams' times).
+[[nodiscard]] SweepJumpBeams SweepJumpWorldBeams(const core::Scan& scan,
+                                                 const core::Trajectory& world_T_sensor);
+
+/// A neighbour scan of the one being labelled (scan k - s or k + s); null: there is none
+/// (before the first scan, after the last).
+struct SweepJumpNeighbour {
+    const core::Scan* scan = nullptr;
+    const SweepJumpBeams* beams = nullptr;
+};
+
+/// The per-scan step of SweepJumpLabels, shared by the offline filter and the live stream
+/// (mapper/sweep_jump_stream.hpp): keep labels of `scan` (world beams `beams`) from its
+/// neighbours `before[s - 1]` = scan k - s and `after[s - 1]` = scan k + s, s = 1 ..
+/// config.reach (both spans config.reach long). A pair counts only when both exist and are
+/// usable (same beam grid, at most s + 0.5 `median_gap_s` away in time). Does not validate.
+[[nodiscard]] std::vector<std::uint8_t> SweepJumpScanLabels(
+    const core::Scan& scan,
+    const SweepJumpBeams& beams,
+    std::span<const SweepJumpNeighbour> before,
+    std::span<const SweepJumpNeighbour> after,
+    double median_gap_s,
+    const SweepJumpConfig& config);
 
 /// Keep labels (1 keep, 0 reject) for every beam of every scan of a run, in scan order. Beams
 /// with status != kOk, without a pose at their time, and the first and last scan's beams are

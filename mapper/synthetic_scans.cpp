@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
+#include <vector>
 
 namespace casmap::mapper {
 namespace {
@@ -64,6 +66,9 @@ SyntheticRun BuildSyntheticRun(const SyntheticDrive& drive) {
     const double period_s = 1.0 / 75.0;
     const double deg = std::numbers::pi / 180.0;
     int valid = 0;
+    std::mt19937_64 noise(20260511);  // range noise: a fixed sequence
+    // Per beam: the height of the box top it hit in the last scan (0: none).
+    std::vector<double> top_before(181, 0.0);
     for (int n = 0;; ++n) {
         core::Scan s;
         s.stamp_s = n * period_s;
@@ -78,15 +83,31 @@ SyntheticRun BuildSyntheticRun(const SyntheticDrive& drive) {
             const core::Pose p = PoseAtTime(drive, s.BeamTime(i));
             const double a = s.BeamAngle(i);
             const Eigen::Vector3d dir = p.rotation * Eigen::Vector3d(std::cos(a), std::sin(a), 0.0);
-            double r = dir.z() < -1e-9 ? -p.translation.z() / dir.z()
-                                       : std::numeric_limits<double>::infinity();
+            const double floor = dir.z() < -1e-9 ? -p.translation.z() / dir.z()
+                                                 : std::numeric_limits<double>::infinity();
+            double r = floor;
+            double top = 0.0;  // height of the box top hit, if the hit is on a top
             for (const SyntheticBox& b : drive.boxes) {
-                r = std::min(r, RayBox(p.translation, dir, b));
+                const double t = RayBox(p.translation, dir, b);
+                if (t < r) {
+                    r = t;
+                    const bool on_top =
+                        std::abs(p.translation.z() + t * dir.z() - b.height_m) < 1e-9;
+                    top = on_top ? b.height_m : 0.0;
+                }
             }
+            if (drive.mixed_far_edges && r == floor && top_before[i] > 0.0 && r <= kMaxRangeM) {
+                r = 0.5 * ((top_before[i] - p.translation.z()) / dir.z() + floor);  // mid-air
+            }
+            top_before[i] = top;
             core::Beam& beam = s.beams[i];
             if (r <= kMaxRangeM) {
                 ++valid;
                 const bool spike = drive.spike_every > 0 && valid % drive.spike_every == 0;
+                if (drive.range_noise_m > 0.0) {
+                    r += drive.range_noise_m *
+                         (2.0 * std::generate_canonical<double, 53>(noise) - 1.0);
+                }
                 beam.range_m = static_cast<float>(spike ? std::max(0.05, r - 0.3) : r);
                 beam.status = core::BeamStatus::kOk;
             }

@@ -27,6 +27,11 @@ struct SyntheticDrive {
     double pose_rate_hz = 1000.0;
     std::vector<SyntheticBox> boxes;
     int spike_every = 0;  // every n-th valid beam reported 0.3 m short (a mixed pixel); 0: none
+    // The first return of a beam that passed a box top's far edge since the last scan (the top
+    // then, the floor now) reported halfway between the top's plane and the floor: the mixed
+    // pixel across scans that the sweep_jump pre-filter removes.
+    bool mixed_far_edges = false;
+    double range_noise_m = 0.0;  // every valid range plus uniform noise in [-n, n] (fixed seed)
 };
 
 struct SyntheticRun {

@@ -10,6 +10,7 @@
 #include "casmap/core/input_error.hpp"
 #include "casmap/core/text.hpp"
 #include "casmap/mapper/beam_geometry.hpp"
+#include "casmap/mapper/consensus_cells.hpp"
 
 namespace casmap::mapper {
 using detail::AngleChanges;
@@ -98,17 +99,9 @@ void TerrainMapper::Update(std::size_t idx, double z, double dz_max_m) {
         detail::UpdateCell(elevation_.data[idx], certainty_.data[idx], z, dz_max_m, config_.a, nan);
         return;
     }
-    float& eq6 = eq6_.data[idx];
-    detail::UpdateCell(eq6, certainty_.data[idx], z, dz_max_m, config_.a, nan);
-    const auto zf = static_cast<float>(z);
-    sum_m_[idx] += z;
-    const std::uint32_t hits = ++hits_[idx];
-    low_m_[idx] = std::min(low_m_[idx], zf);
-    high_m_[idx] = std::max(high_m_[idx], zf);
-    const bool agree = hits >= static_cast<std::uint32_t>(config_.consensus->min_hits) &&
-                       static_cast<double>(high_m_[idx]) - static_cast<double>(low_m_[idx]) <=
-                           config_.consensus->spread_m;
-    elevation_.data[idx] = agree ? static_cast<float>(sum_m_[idx] / hits) : eq6;
+    detail::UpdateConsensusCell(elevation_.data[idx], certainty_.data[idx], eq6_.data[idx],
+                                sum_m_[idx], hits_[idx], low_m_[idx], high_m_[idx], z, dz_max_m,
+                                config_.a, nan, *config_.consensus);
 }
 
 bool TerrainMapper::AddPoint(const Eigen::Vector3d& p_world, double dz_max_m) {
