@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
+#include <optional>
+#include <span>
 #include <thread>
 
 #include "casmap/core/check.hpp"
@@ -13,7 +15,10 @@
 #include "casmap/io/atomic_file.hpp"
 #include "casmap/io/run_file.hpp"
 #include "casmap/io/yaml_emit.hpp"
+#include "casmap/mapper/stage_params.hpp"
+#include "casmap/mapper/sweep_jump_stream.hpp"
 #include "casmap/pipeline/map_run.hpp"
+#include "casmap/pipeline/stage_yaml.hpp"
 
 namespace casmap::pipeline {
 namespace {
@@ -80,7 +85,11 @@ private:
 class Session {
 public:
     Session(const LiveConfig& config, LiveScanSource& scans, drivers::PoseStream& poses)
-        : config_(config), scans_(scans), poses_(poses), window_(config.window) {}
+        : config_(config), scans_(scans), poses_(poses), window_(config.window) {
+        if (config.prefilter == Prefilter::kSweepJump) {
+            stream_.emplace(config.sweep_jump);
+        }
+    }
 
     LiveResult Run(const std::atomic<bool>& stop, const LiveStatusFn& on_status);
 
@@ -92,6 +101,11 @@ private:
     };
     Coverage Covers(const core::Scan& scan, std::size_t& first, std::size_t& last) const;
     void ProcessPending(Clock::time_point now, bool final);
+    void Map(const core::Scan& scan,
+             const core::Trajectory& poses,
+             std::span<const std::uint8_t> keep,
+             Clock::time_point received);
+    void MapLabelled();  // the scans the pre-filter has labelled
     LiveStatus Status(Clock::time_point now, bool finished);
     void WriteSnapshots() const;
     void WriteFinal(const LiveStatus& status, LiveResult& result) const;
@@ -100,6 +114,8 @@ private:
     LiveScanSource& scans_;
     drivers::PoseStream& poses_;
     mapper::ActiveWindow window_;
+    std::optional<mapper::SweepJumpStream> stream_;  // the sweep_jump pre-filter
+    std::deque<Clock::time_point> stream_received_;  // arrival of each scan in stream_
     std::vector<core::Scan> received_;
     std::vector<core::TimedPose> pose_log_;
     std::deque<Pending> pending_;
@@ -164,18 +180,48 @@ void Session::ProcessPending(Clock::time_point now, bool final) {
             ++dropped_;
             continue;
         }
-        const core::Trajectory slice(std::vector<core::TimedPose>(
+        core::Trajectory slice(std::vector<core::TimedPose>(
             pose_log_.begin() + static_cast<std::ptrdiff_t>(first),
             pose_log_.begin() + static_cast<std::ptrdiff_t>(last) + 1));
-        (void)window_.AddScan(scan, slice);
-        ++mapped_;
-        const double ms = Seconds(Clock::now() - p.received) * 1e3;
-        if (latency_ms_.size() < kLatencies) {
-            latency_ms_.push_back(ms);
-        } else {
-            latency_ms_[latency_next_] = ms;
-            latency_next_ = (latency_next_ + 1) % kLatencies;
+        if (!stream_) {
+            Map(scan, slice, {}, p.received);
+            continue;
         }
+        stream_->Push(scan, std::move(slice));
+        stream_received_.push_back(p.received);
+        MapLabelled();
+    }
+    if (final && stream_) {  // the session's last scans: labelled as the run's last ones
+        stream_->Finish();
+        MapLabelled();
+    }
+}
+
+void Session::MapLabelled() {
+    while (std::optional<mapper::SweepJumpStream::Labelled> l = stream_->Pop()) {
+        const Clock::time_point received = stream_received_.front();
+        stream_received_.pop_front();
+        Map(l->scan, l->poses, l->keep, received);
+    }
+}
+
+void Session::Map(const core::Scan& scan,
+                  const core::Trajectory& poses,
+                  std::span<const std::uint8_t> keep,
+                  Clock::time_point received) {
+    for (const mapper::FilteredRow& row : window_.AddScan(scan, poses, keep)) {
+        if (config_.on_row) {
+            config_.on_row(row);
+        }
+    }
+    ++mapped_;
+    // From the scan's arrival: with a pre-filter this includes the wait for its neighbours.
+    const double ms = Seconds(Clock::now() - received) * 1e3;
+    if (latency_ms_.size() < kLatencies) {
+        latency_ms_.push_back(ms);
+    } else {
+        latency_ms_[latency_next_] = ms;
+        latency_next_ = (latency_next_ + 1) % kLatencies;
     }
 }
 
@@ -187,6 +233,7 @@ LiveStatus Session::Status(Clock::time_point now, bool finished) {
     s.dropped = dropped_;
     s.poses = pose_log_.size();
     s.rows_filtered = window_.stats().rows_filtered;
+    s.beams_rejected = window_.stats().beams.beams_rejected;
     const double span = Seconds(now - last_status_);
     if (span > 0.0) {
         s.scans_per_s = static_cast<double>(s.scans - scans_at_last_status_) / span;
@@ -247,9 +294,21 @@ std::string ConfigYaml(const LiveConfig& c, const std::string& source) {
     io::EmitNumber(out, "heading_step_rad", w.heading_step_rad);
     out << YAML::EndMap;
     out << YAML::Key << "mapper" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    const MapperMode mode = w.consensus ? MapperMode::kConsensus : MapperMode::kPaper;
+    out << YAML::Key << "mode" << YAML::Value << std::string(ToString(mode));
+    out << YAML::Key << "prefilter" << YAML::Value << std::string(ToString(c.prefilter));
     out << YAML::Key << "a" << YAML::Value << w.a;
     io::EmitNumber(out, "delta_l_m", w.delta_l_m);
     io::EmitNumber(out, "scan_period_s", w.scan_period_s);
+    // The parameters of the stages run, as casmap map's map.yaml writes them.
+    mapper::FilterParams params;
+    params.sweep_jump = c.sweep_jump;
+    params.consensus = w.consensus.value_or(mapper::ConsensusConfig{});
+    for (const mapper::StageSection& section : mapper::StageSections(params)) {
+        if (RunsStage(mode, c.prefilter, section.stage)) {
+            detail::EmitStageSection(out, section);
+        }
+    }
     out << YAML::EndMap;
     out << YAML::Key << "cas" << YAML::Value << YAML::Flow << YAML::BeginMap;
     out << YAML::Key << "k" << YAML::Value << w.cas.k;
@@ -368,6 +427,11 @@ void TrajectoryPoseStream::Poll(std::vector<core::TimedPose>& out) {
 void LiveConfig::Validate() const {
     window.Validate();
     const core::Check check("live");
+    check.That(prefilter == Prefilter::kNone || prefilter == Prefilter::kSweepJump, "prefilter",
+               ToString(prefilter), "allowed live: none | sweep_jump");
+    if (prefilter == Prefilter::kSweepJump) {
+        sweep_jump.Validate();
+    }
     check.NonNegative("snapshot_every_s", snapshot_every_s, ">= 0");
     check.Positive("status_every_s", status_every_s, "> 0");
     check.Positive("pose_tolerance_s", pose_tolerance_s, "> 0");
@@ -394,7 +458,8 @@ std::string StatusJson(const LiveStatus& s, const mapper::ActiveWindow& window) 
     std::snprintf(
         buf, sizeof(buf),
         "{\"elapsed_s\": %.3f, \"scans\": %llu, \"scans_mapped\": %llu, \"dropped\": %llu, "
-        "\"poses\": %llu, \"rows_filtered\": %llu, \"scans_per_s\": %.2f, "
+        "\"poses\": %llu, \"rows_filtered\": %llu, \"beams_rejected\": %llu, "
+        "\"scans_per_s\": %.2f, "
         "\"latency_p50_ms\": %.3f, \"latency_p99_ms\": %.3f, \"crc_errors\": %llu, "
         "\"resyncs\": %llu, \"reconnects\": %llu, \"finished\": %s,\n"
         " \"window\": {\"rows\": %d, \"cols\": %d, \"m\": %d, \"cell_m\": %s, \"heading_rad\": "
@@ -404,8 +469,8 @@ std::string StatusJson(const LiveStatus& s, const mapper::ActiveWindow& window) 
         s.elapsed_s, static_cast<unsigned long long>(s.scans),
         static_cast<unsigned long long>(s.scans_mapped), static_cast<unsigned long long>(s.dropped),
         static_cast<unsigned long long>(s.poses), static_cast<unsigned long long>(s.rows_filtered),
-        s.scans_per_s, s.latency_p50_ms, s.latency_p99_ms,
-        static_cast<unsigned long long>(s.source.crc_errors),
+        static_cast<unsigned long long>(s.beams_rejected), s.scans_per_s, s.latency_p50_ms,
+        s.latency_p99_ms, static_cast<unsigned long long>(s.source.crc_errors),
         static_cast<unsigned long long>(s.source.resyncs),
         static_cast<unsigned long long>(s.source.reconnects), s.finished ? "true" : "false",
         window.config().rows, window.config().cols, window.config().m,

@@ -21,6 +21,8 @@
 #include "casmap/core/trajectory.hpp"
 #include "casmap/drivers/pose_stream.hpp"
 #include "casmap/mapper/active_window.hpp"
+#include "casmap/mapper/sweep_jump.hpp"
+#include "casmap/pipeline/map_run.hpp"
 
 namespace casmap::pipeline {
 
@@ -68,7 +70,14 @@ private:
 };
 
 struct LiveConfig {
-    mapper::ActiveWindowConfig window;
+    mapper::ActiveWindowConfig window;  // window.consensus set: the consensus mapper mode
+    // The scan pre-filter before the window: kNone, or kSweepJump as a stream
+    // (mapper::SweepJumpStream: each scan mapped once the next sweep_jump.reach scans with
+    // poses arrived, the last ones at the end of the session; rejected beams are not mapped).
+    Prefilter prefilter = Prefilter::kNone;
+    mapper::SweepJumpConfig sweep_jump;  // used when prefilter == kSweepJump
+    // Called with each row the window filtered, in order (a viewer, a test); may be empty.
+    std::function<void(const mapper::FilteredRow&)> on_row;
     std::filesystem::path out_dir;
     double snapshot_every_s = 2.0;   // window + obstacle map PNG/TIFF; 0: only at exit
     double status_every_s = 0.5;     // status callback and status.json
@@ -77,19 +86,20 @@ struct LiveConfig {
     double timeout_s = 10.0;         // stop (timed out) after this long without a scan
     double duration_s = 0.0;         // stop after this long; 0: no limit
     std::uint64_t max_scans = 0;     // stop after this many scans received; 0: no limit
-    void Validate() const;           // InputError naming the field
+    void Validate() const;           // InputError naming the field ("prefilter", "sweep_jump.<f>")
 };
 
 struct LiveStatus {
     double elapsed_s = 0.0;
-    std::uint64_t scans = 0;          // received from the source
-    std::uint64_t scans_mapped = 0;   // given to the window with poses
-    std::uint64_t dropped = 0;        // no pose within tolerance: counted, never mapped
-    std::uint64_t poses = 0;          // received
-    std::uint64_t rows_filtered = 0;  // rows the window CAS-filtered and registered
-    double scans_per_s = 0.0;         // over the last status period
-    double latency_p50_ms = 0.0;      // scan handed over -> window updated and rows filtered
-    double latency_p99_ms = 0.0;      // (including any wait for poses), last 1000 scans
+    std::uint64_t scans = 0;           // received from the source
+    std::uint64_t scans_mapped = 0;    // given to the window with poses
+    std::uint64_t dropped = 0;         // no pose within tolerance: counted, never mapped
+    std::uint64_t poses = 0;           // received
+    std::uint64_t rows_filtered = 0;   // rows the window CAS-filtered and registered
+    std::uint64_t beams_rejected = 0;  // beams the pre-filter rejected: never mapped
+    double scans_per_s = 0.0;          // over the last status period
+    double latency_p50_ms = 0.0;       // scan handed over -> window updated and rows filtered
+    double latency_p99_ms = 0.0;       // (including any wait for poses), last 1000 scans
     LiveSourceCounters source;
     bool finished = false;  // the final status
 };

@@ -10,6 +10,7 @@
 #include "casmap/core/text.hpp"
 #include "casmap/drivers/telegram.hpp"
 #include "casmap/mapper/filter_params.hpp"
+#include "casmap/pipeline/map_run.hpp"
 #ifdef CASMAP_PIPELINE_WITH_SIM
 #include "casmap/pipeline/live_sim.hpp"
 #endif
@@ -82,10 +83,31 @@ LiveSetup MakeLiveSetup(const LiveOptions& o, int threads) {
     if (o.m != 0) {
         cfg.window.m = o.m;
     }
+    // The mapper mode and pre-filter, and their parameters as casmap map takes them.
+    const core::Check check;
+    MapSettings stages;
+    stages.mode = ParseMapperMode(o.mapper, "mapper");
+    check.That(stages.mode != MapperMode::kKalman, "mapper", o.mapper,
+               "allowed live: paper | consensus (the Kalman mapper has no window form)");
+    stages.prefilter = ParsePrefilter(o.prefilter, "prefilter");
+    check.That(stages.prefilter == Prefilter::kNone || stages.prefilter == Prefilter::kSweepJump,
+               "prefilter", o.prefilter,
+               "allowed live: none | sweep_jump (shadow and range_jump run in casmap map)");
+    std::vector<std::string> stage_sets;
+    std::vector<std::string> cas_sets;
+    for (const std::string& s : o.cas) {
+        (IsStageParameter(s.substr(0, s.find('='))) ? stage_sets : cas_sets).push_back(s);
+    }
+    ApplyStageSettings(stages, stage_sets, "set");
+    if (stages.mode == MapperMode::kConsensus) {
+        cfg.window.consensus = stages.consensus;
+    }
+    cfg.prefilter = stages.prefilter;
+    cfg.sweep_jump = stages.sweep_jump;
     // CAS parameters by name; the window's mapping cell and increment follow the filter's.
     mapper::FilterParams params;
     params.cas = cfg.window.cas;
-    for (const std::string& s : o.cas) {
+    for (const std::string& s : cas_sets) {
         params.SetAssignment(s);
     }
     params.Validate();
@@ -111,14 +133,15 @@ std::string LiveSummaryJson(const LiveResult& r) {
     char buf[1024];
     std::snprintf(buf, sizeof(buf),
                   "{\"scans\": %llu, \"scans_mapped\": %llu, \"dropped\": %llu, \"poses\": %llu, "
-                  "\"rows_filtered\": %llu, \"scans_per_s\": %.3f, \"latency_p50_ms\": %.3f, "
+                  "\"rows_filtered\": %llu, \"beams_rejected\": %llu, \"scans_per_s\": %.3f, "
+                  "\"latency_p50_ms\": %.3f, "
                   "\"latency_p99_ms\": %.3f, \"crc_errors\": %llu, \"resyncs\": %llu, "
                   "\"reconnects\": %llu, \"beams_behind\": %llu, \"beams_late\": %llu, "
                   "\"turns\": %llu}",
                   n(s.scans), n(s.scans_mapped), n(s.dropped), n(s.poses), n(s.rows_filtered),
-                  s.scans_per_s, s.latency_p50_ms, s.latency_p99_ms, n(s.source.crc_errors),
-                  n(s.source.resyncs), n(s.source.reconnects), n(r.window.beams_behind),
-                  n(r.window.beams_late), n(r.window.turns));
+                  n(s.beams_rejected), s.scans_per_s, s.latency_p50_ms, s.latency_p99_ms,
+                  n(s.source.crc_errors), n(s.source.resyncs), n(s.source.reconnects),
+                  n(r.window.beams_behind), n(r.window.beams_late), n(r.window.turns));
     return buf;
 }
 

@@ -43,7 +43,11 @@ struct LiveOptions {
     std::uint64_t scans = 0;         ///< stop after this many scans received; 0: no limit
     double timeout_s = 10.0;         ///< connecting, and the longest wait for a scan
     double pose_tolerance_s = 0.05;  ///< largest pose gap a scan may span
-    std::vector<std::string> cas;    ///< CAS parameters NAME=VALUE (mapper::FilterParams)
+    std::string mapper = "paper";    ///< paper (Eq. 1-6) | consensus (mapper/consensus.hpp)
+    std::string prefilter = "none";  ///< none | sweep_jump (mapper/sweep_jump_stream.hpp)
+    /// NAME=VALUE (mapper::FilterParams' names): CAS parameters, and those of the mapper mode
+    /// and pre-filter chosen (consensus.<f>, sweep_jump.<f>; another stage's is an error).
+    std::vector<std::string> cas;
 
     /// The source's checks (one source; a scanner with one pose stream and an LMS baud; a scene
     /// with a motion, in simulator builds only): InputError naming the field, no `where`. The
@@ -68,8 +72,10 @@ struct LiveSetup {
 /// source is simulated here on `threads` threads (0: all cores); its window is anchored at the
 /// simulated map's grid origin, m follows the rig's height and pitch unless set, and Eq. 8's v
 /// is the rig's cruise speed. CAS parameters go through mapper::FilterParams (their cell and
-/// increment become the window's). InputError for bad options; a scene in a build without the
-/// simulator is one ("scene ... built without the simulator; use device").
+/// increment become the window's); mapping-stage parameters through ApplyStageSettings
+/// (map_run.hpp), as `casmap map --set`. InputError for bad options ("mapper", "prefilter",
+/// "set" for an assignment of a stage not chosen, the parameter for a bad value); a scene in a
+/// build without the simulator is one ("scene ... built without the simulator; use device").
 [[nodiscard]] LiveSetup MakeLiveSetup(const LiveOptions& options, int threads);
 
 /// The message of a session that timed out (LiveResult::timed_out): what was waited for and

@@ -3,6 +3,7 @@
 //                [--realtime])
 //             --out DIR [--window R,C] [--m M] [--obstacle-cell-m S] [--snapshot-every-s N]
 //             [--duration S] [--scans N] [--timeout S] [--pose-tolerance-s T]
+//             [--mapper paper|consensus] [--prefilter none|sweep_jump]
 //             [--set NAME=VALUE]... [--view [--port P] [--host H]]
 // Live mapping with the paper's active window: flags -> pipeline::LiveOptions ->
 // MakeLiveSetup + RunLive (pipeline/live_setup.hpp). Prints a status line on a terminal
@@ -42,9 +43,9 @@ void StatusLine(const pipeline::LiveStatus& s) {
     using U = unsigned long long;
     std::fprintf(stderr,
                  "\rlive: %llu scans, %.1f scans/s, latency p99 %.2f ms, dropped %llu, "
-                 "crc errors %llu, reconnects %llu   %s",
-                 U{s.scans}, s.scans_per_s, s.latency_p99_ms, U{s.dropped}, U{s.source.crc_errors},
-                 U{s.source.reconnects}, s.finished ? "\n" : "");
+                 "rejected beams %llu, crc errors %llu, reconnects %llu   %s",
+                 U{s.scans}, s.scans_per_s, s.latency_p99_ms, U{s.dropped}, U{s.beams_rejected},
+                 U{s.source.crc_errors}, U{s.source.reconnects}, s.finished ? "\n" : "");
     std::fflush(stderr);
 }
 
@@ -54,7 +55,9 @@ void RunLiveCommand(LiveFlags& f, const CommonOptions& common) {
     static const FlagNames kFlags = {{"device", "--device"},   {"baud", "--baud"},
                                      {"poses", "--poses"},     {"poses_socket", "--poses-socket"},
                                      {"scene", "--scene"},     {"motion", "--motion"},
-                                     {"speed_m_s", "--speed"}, {"rig", "--rig"}};
+                                     {"speed_m_s", "--speed"}, {"rig", "--rig"},
+                                     {"mapper", "--mapper"},   {"prefilter", "--prefilter"},
+                                     {"set", "--set"}};
     pipeline::LiveSetup setup;
     WithSetFlag([&] {
         WithCommandLineFlags(kFlags, [&] {
@@ -127,8 +130,17 @@ void AddLiveCommand(CLI::App& app, CommonOptions& common) {
     sub->add_option("--pose-tolerance-s", o.pose_tolerance_s,
                     "largest pose gap a scan may span; wider: the scan is dropped")
         ->capture_default_str();
+    sub->add_option("--mapper", o.mapper,
+                    "paper (Eq. 1-6) | consensus (Eq. 1-5, the mean of a cell whose heights agree)")
+        ->capture_default_str();
+    sub->add_option("--prefilter", o.prefilter,
+                    "scan pre-filter before the window: none | sweep_jump (each scan mapped once "
+                    "the next has arrived)")
+        ->capture_default_str();
     sub->add_option("--set", o.cas,
-                    "CAS parameter NAME=VALUE (repeatable; names as casmap filter --set)");
+                    "NAME=VALUE, repeatable: a CAS parameter (names as casmap filter --set), or "
+                    "consensus.<field> / sweep_jump.<field> of the mode / pre-filter chosen "
+                    "(names as casmap map --set)");
     AddThreadsOption(sub, common);
 #ifdef CASMAP_WITH_VIEW
     sub->add_flag("--view", f->view, "serve the live page while mapping (see casmap view)");
