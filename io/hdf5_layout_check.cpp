@@ -11,6 +11,12 @@ constexpr std::uint8_t kMaxLayoutDims = 33;  // H5O_LAYOUT_NDIMS: H5S_MAX_RANK +
 
 // H5O__layout_decode's chunk rules and H5D__chunk_init's use of the dimensions: one per
 // dataspace dimension and one for the element, none 0 (HDF5 checks that only for version 3).
+// Then what H5D__chunk_construct makes every chunked dataset HDF5 writes satisfy, and 1.10.8
+// does not check when it opens one: the last dimension is the datatype's size (HDF5 sizes its
+// chunk buffers from the dimensions but copies elements of the datatype's size: fuzz finding,
+// a 14-byte float in 4-byte chunk elements read past the buffer), and no dimension exceeds the
+// dataspace's fixed maximum (its size when it stores none; a chunk of 46 336 columns for 181
+// made HDF5 copy past the chunk it inflated: fuzz finding).
 bool CheckChunk(Cursor& c, const std::vector<std::uint64_t>& dims, const LayoutContext& ctx) {
     if (ctx.extent && dims.size() != std::size_t{ctx.extent->rank} + 1) {
         return c.Fail("its chunk has " + std::to_string(dims.size()) +
@@ -20,6 +26,23 @@ bool CheckChunk(Cursor& c, const std::vector<std::uint64_t>& dims, const LayoutC
     for (std::size_t k = 0; k < dims.size(); ++k) {
         if (dims[k] == 0) {
             return c.Fail("its chunk dimension " + std::to_string(k) + " is 0");
+        }
+    }
+    if (!ctx.extent) {
+        return true;
+    }
+    if (ctx.type_size && dims.back() != *ctx.type_size) {
+        return c.Fail("its chunk's element dimension of " + std::to_string(dims.back()) +
+                      " bytes is not the datatype's size of " + std::to_string(*ctx.type_size) +
+                      " bytes");
+    }
+    const std::vector<std::uint64_t>& fixed =
+        ctx.extent->maxima.empty() ? ctx.extent->sizes : ctx.extent->maxima;
+    for (std::size_t k = 0; k + 1 < dims.size(); ++k) {
+        if (fixed[k] != AllOnes(ctx.sb->lengths) && dims[k] > fixed[k]) {
+            return c.Fail("its chunk dimension " + std::to_string(k) + " of " +
+                          std::to_string(dims[k]) + " exceeds the dataspace's fixed maximum " +
+                          std::to_string(fixed[k]));
         }
     }
     return true;

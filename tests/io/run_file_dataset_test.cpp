@@ -289,6 +289,43 @@ TEST(RunFileDatasets, MoreExternalFilesThanItsSlotsIsAnInputError) {
                        ": it uses 5 slots of its 1 allocated"));
 }
 
+TEST(RunFileDatasets, AChunkElementOtherThanTheDatatypeIsAnInputError) {
+    // HDF5 sizes its chunk buffers from the chunk's dimensions but copies elements of the
+    // datatype's size (fuzz finding: a 14-byte float read past 4-byte chunk elements).
+    Written w = WrittenRun();
+    const Message type = Find(w.bytes, w.ranges, kDatatype);
+    ASSERT_EQ(Le(w.bytes, type.at + 8 + 4, 4), 4U);
+    PutLe(w.bytes, type.at + 8 + 4, 4, 8);
+    EXPECT_EQ(
+        ReadError(w.bytes),
+        Expected("layout message at byte " + std::to_string(Find(w.bytes, w.ranges, kLayout).at) +
+                 ": its chunk's element dimension of 4 bytes is not the datatype's size of "
+                 "8 bytes"));
+}
+
+TEST(RunFileDatasets, AChunkPastAFixedMaximumIsAnInputError) {
+    // 8 x 181 with no unlimited dimension: a chunk of 2 x 200 columns (HDF5 refuses to create
+    // one; 1.10.8 opens it and copies past the chunk it inflated: fuzz finding).
+    Written w = WrittenRun();
+    const Message layout = Find(w.bytes, w.ranges, kLayout);
+    PutLe(w.bytes, layout.at + 8 + 3 + 8 + 4, 4, 200);
+    EXPECT_EQ(ReadError(w.bytes),
+              Expected("layout message at byte " + std::to_string(layout.at) +
+                       ": its chunk dimension 1 of 200 exceeds the dataspace's fixed maximum 181"));
+}
+
+TEST(RunFileDatasets, TheFuzzersChunkInputsAreInputErrors) {
+    const fs::path dir = fs::path(CASMAP_SOURCE_DIR) / "tests/data/fuzz/run_file";
+    // seed_v3_chunked.h5 with /scans/ranges_m's float datatype size 4 -> 14 bytes, and with its
+    // chunk's second dimension 181 -> 46 336 (1 112 064 bytes a chunk).
+    EXPECT_EQ(ReadError(ReadBytes(dir / "regress_chunk_element_size.h5")),
+              Expected("layout message at byte 5144: its chunk's element dimension of 4 bytes is "
+                       "not the datatype's size of 14 bytes"));
+    EXPECT_EQ(ReadError(ReadBytes(dir / "regress_chunk_past_fixed_maximum.h5")),
+              Expected("layout message at byte 5144: its chunk dimension 1 of 46336 exceeds the "
+                       "dataspace's fixed maximum 181"));
+}
+
 std::optional<std::string> CheckDataset(const std::string& bytes, std::uint64_t header) {
     return h5::FindCorruptDatasetMessages(
         header, bytes.size(), [&](std::uint64_t at, std::size_t n, void* out) {
