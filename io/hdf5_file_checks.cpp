@@ -5,12 +5,14 @@
 // dataset's own messages (hdf5_dataset_header.hpp).
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 
 #include "casmap/io/hdf5_dataset_header.hpp"
 #include "casmap/io/hdf5_global_heap.hpp"
+#include "casmap/io/hdf5_header_walk.hpp"
 #include "casmap/io/hdf5_object_header.hpp"
 
 namespace casmap::io::h5 {
@@ -55,15 +57,90 @@ void FileReader::CheckGlobalHeap(const std::string& where, const std::string& va
     }
 }
 
+namespace {
+// HDF5 looks for the superblock at byte 0, 512, 1024, 2048, ... (a user block before it); casmap's
+// checks read it at byte 0 only.
+std::optional<std::string> FindMovedSuperblock(std::uint64_t file_size, const ReadAt& read) {
+    constexpr std::array<std::uint8_t, 8> kSignature = {0x89, 'H',  'D',  'F',
+                                                        '\r', '\n', 0x1a, '\n'};
+    std::array<std::uint8_t, 8> head{};
+    for (std::uint64_t at = 0; at + head.size() <= file_size; at = at == 0 ? 512 : 2 * at) {
+        if (read(at, head.size(), head.data()) == head.size() && head == kSignature) {
+            if (at == 0) {
+                return std::nullopt;
+            }
+            return "its superblock is at byte " + std::to_string(at) +
+                   " after a user block; casmap reads files whose superblock is at byte 0";
+        }
+    }
+    return std::nullopt;  // not HDF5: H5Fopen says so
+}
+}  // namespace
+
+void FileReader::CheckBeforeOpen() const {
+    const std::optional<std::string> problem =
+        CheckBytes("/", "", [](std::uint64_t size, const ReadAt& read) {
+            if (std::optional<std::string> why = FindMovedSuperblock(size, read)) {
+                return why;
+            }
+            // H5Fopen rejects a file shorter than its end-of-file address before it loads the
+            // root group ("truncated file").
+            const std::optional<Superblock> sb = ReadSuperblock(size, read);
+            if (!sb || size < sb->end_of_file) {
+                return std::optional<std::string>();
+            }
+            return FindCorruptHeaderBlocks(std::nullopt, size, read);
+        });
+    if (problem) {
+        throw Error("/", "", "corrupt file: " + *problem);
+    }
+}
+
+void FileReader::CheckHeaderBlocks(const std::string& object) const {
+    if (header_addresses_.count(object) != 0) {
+        return;
+    }
+    // The link's target address, read from the parent group (checked already) without loading
+    // the target's header; soft and external links (another file) are not followed.
+    H5L_info_t link{};
+    if (H5Lget_info(file_.get(), object.c_str(), &link, H5P_DEFAULT) < 0) {
+        throw Error(object, "", "corrupt file: its link cannot be read");
+    }
+    if (link.type != H5L_TYPE_HARD) {
+        throw Error(object, "", "must be a hard link (casmap follows no soft or external link)");
+    }
+    const std::optional<std::string> problem =
+        CheckBytes(object, "", [&](std::uint64_t size, const ReadAt& read) {
+            return FindCorruptHeaderBlocks(link.u.address, size, read);
+        });
+    if (problem) {
+        throw Error(object, "", "corrupt file: " + *problem);
+    }
+    header_addresses_[object] = link.u.address;
+}
+
+std::optional<std::uint64_t> FileReader::HeaderAddress(const std::string& object) const {
+    if (object == "/") {  // checked before H5Fopen loaded it
+        H5O_info_t info{};
+        if (H5Oget_info_by_name2(file_.get(), "/", &info, H5O_INFO_BASIC, H5P_DEFAULT) < 0) {
+            return std::nullopt;
+        }
+        return info.addr;
+    }
+    if (!Has(object)) {
+        return std::nullopt;
+    }
+    return header_addresses_.at(object);
+}
+
 void FileReader::CheckDatasetMessages(const std::string& dataset) const {
-    H5O_info_t info{};
-    if (H5Oget_info_by_name2(file_.get(), dataset.c_str(), &info, H5O_INFO_BASIC, H5P_DEFAULT) <
-        0) {
+    const std::optional<std::uint64_t> address = HeaderAddress(dataset);
+    if (!address) {
         throw Error(dataset, "", "corrupt file: its object header cannot be read");
     }
     const std::optional<std::string> problem =
         CheckBytes(dataset, "", [&](std::uint64_t size, const ReadAt& read) {
-            return FindCorruptDatasetMessages(info.addr, size, read);
+            return FindCorruptDatasetMessages(*address, size, read);
         });
     if (problem) {
         throw Error(dataset, "", "corrupt file: " + *problem);
@@ -73,13 +150,12 @@ void FileReader::CheckDatasetMessages(const std::string& dataset) const {
 void FileReader::CheckAttributeMessages(const std::string& object) const {
     auto [it, fresh] = attribute_problems_.try_emplace(object);
     if (fresh) {
-        H5O_info_t info{};
-        if (H5Oget_info_by_name2(file_.get(), object.c_str(), &info, H5O_INFO_BASIC, H5P_DEFAULT) <
-            0) {
+        const std::optional<std::uint64_t> address = HeaderAddress(object);
+        if (!address) {
             it->second = "its object header cannot be read";
         } else {
             it->second = CheckBytes(object, "", [&](std::uint64_t size, const ReadAt& read) {
-                             return FindCorruptAttributeMessages(info.addr, size, read);
+                             return FindCorruptAttributeMessages(*address, size, read);
                          }).value_or("");
         }
     }

@@ -34,6 +34,9 @@ std::string ClassName(H5T_class_t c) {
     }
 }
 
+// The widest integer or float element casmap reads (HDF5 knows no wider native number).
+constexpr std::size_t kMaxNumberBytes = 16;
+
 Id Utf8StringType() {
     Id type = Check(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy");
     Check(H5Tset_size(type.get(), H5T_VARIABLE), "H5Tset_size");
@@ -50,6 +53,7 @@ FileReader::FileReader(std::string path) : path_(std::move(path)) {
     }
     const Id fapl = Check(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate");
     Check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), "H5Pset_fclose_degree");
+    CheckBeforeOpen();
     const hid_t file = H5Fopen(path_.c_str(), H5F_ACC_RDONLY, fapl.get());
     if (file < 0) {
         throw MakeInputError(path_, "run file", "", "not a readable HDF5 file");
@@ -68,6 +72,7 @@ FileReader::FileReader(const void* image, std::size_t size, std::string name)
     if (size == 0 || H5Pset_file_image(fapl.get(), const_cast<void*>(image), size) < 0) {
         throw MakeInputError(path_, "run file", "", "not a readable HDF5 file");
     }
+    CheckBeforeOpen();
     const hid_t file = H5Fopen(path_.c_str(), H5F_ACC_RDONLY, fapl.get());
     if (file < 0) {
         throw MakeInputError(path_, "run file", "", "not a readable HDF5 file");
@@ -90,6 +95,7 @@ bool FileReader::Has(const std::string& object) const {
         if (H5Lexists(file_.get(), prefix.c_str(), H5P_DEFAULT) <= 0) {
             return false;
         }
+        CheckHeaderBlocks(prefix);  // before HDF5 loads it to look inside or open it
         if (next == std::string::npos) {
             break;
         }
@@ -146,6 +152,12 @@ void FileReader::ReadRawImpl(const std::string& dataset,
     const H5T_class_t cls = H5Tget_class(type.get());
     if (cls != expected) {
         throw Error(dataset, ClassName(cls), "element type must be " + ClassName(expected));
+    }
+    // H5Dread sizes its conversion buffer by the file's element size.
+    if (H5Tget_size(type.get()) > kMaxNumberBytes) {
+        throw Error(
+            dataset, std::to_string(H5Tget_size(type.get())) + "-byte elements",
+            "element size limit " + std::to_string(kMaxNumberBytes) + " bytes, see docs/limits.md");
     }
     const Id space = Check(H5Dget_space(d.get()), H5Sclose, "H5Dget_space " + dataset);
     const int ndims = H5Sget_simple_extent_ndims(space.get());

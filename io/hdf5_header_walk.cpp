@@ -119,7 +119,7 @@ std::string AtByte(std::uint64_t offset) { return "at byte " + std::to_string(of
 // end-of-file address is the third address from the base address (base, free space or
 // superblock extension, end of file).
 std::optional<Superblock> ReadSuperblock(std::uint64_t file_size, const ReadAt& read) {
-    std::array<std::uint8_t, 64> head{};
+    std::array<std::uint8_t, 96> head{};
     const std::size_t got =
         static_cast<std::size_t>(std::min<std::uint64_t>(head.size(), file_size));
     if (got < 32 || read(0, got, head.data()) != got ||
@@ -139,10 +139,15 @@ std::optional<Superblock> ReadSuperblock(std::uint64_t file_size, const ReadAt& 
     }
     const std::size_t base = version == 0 ? 24 : version == 1 ? 28 : 12;
     const std::size_t eof = base + 2 * s.offsets;
-    if (got < eof + s.offsets) {
+    // Versions 0-1: base, free space, end of file, driver information, then the root group's
+    // symbol table entry (link name offset, object header address); versions 2-3: base,
+    // extension, end of file, root object header address.
+    const std::size_t root = version <= 1 ? base + 5 * s.offsets : base + 3 * s.offsets;
+    if (got < root + s.offsets) {
         return std::nullopt;  // HDF5 cannot read the superblock either
     }
     s.end_of_file = DecodeLe(&head[eof], s.offsets);
+    s.root = DecodeLe(&head[root], s.offsets);
     return s;
 }
 
@@ -248,6 +253,18 @@ std::optional<Extent> DecodeExtent(const std::uint8_t* p, std::uint64_t size, st
         }
     }
     return e;
+}
+
+std::optional<std::string> FindCorruptHeaderBlocks(std::optional<std::uint64_t> address,
+                                                   std::uint64_t file_size,
+                                                   const ReadAt& read) {
+    const std::optional<Superblock> sb = ReadSuperblock(file_size, read);
+    if (!sb) {
+        return std::nullopt;  // H5Fopen rejects the file, or the walks that need it say so
+    }
+    const HeaderFile file{*sb, file_size, &read};
+    return WalkHeader(file, address.value_or(sb->root), true,
+                      [](const HeaderMessage&) { return std::optional<std::string>(); });
 }
 
 Resolved ResolveMessage(const HeaderFile& file, const HeaderMessage& m, const std::string& what) {

@@ -43,6 +43,7 @@ struct Superblock {
     // the file read-only); relative to the base address, which HDF5 takes to be where it found
     // the superblock (H5F__super_read overrides a stored base that differs): byte 0 here.
     std::uint64_t end_of_file = 0;
+    std::uint64_t root = 0;  // the root group's object header address
 };
 
 /// The superblock at byte 0 (versions 0-3), or nullopt when there is none or its sizes of
@@ -73,6 +74,16 @@ using VisitMessage = std::function<std::optional<std::string>(const HeaderMessag
                                                     std::uint64_t start,
                                                     bool v2,
                                                     const VisitMessage& visit);
+
+/// Walks the blocks of the object header at `address` (nullopt: the root group's, from the
+/// superblock) the way H5O_protect loads them, the first chunk and every continuation block, in
+/// either header version, and returns the reason the first bad one gives: a block outside the
+/// file or above 16 MiB, more than kMaxHeaderContinuations blocks, a message overrunning its
+/// block. HDF5 1.10.8 crashes in H5F__accum_read when a continuation block lies past the end of
+/// the file (fuzz finding), before any message is decoded, so this runs before HDF5 loads a
+/// header at all. nullopt also when there is no superblock at byte 0 (H5Fopen decides).
+[[nodiscard]] std::optional<std::string> FindCorruptHeaderBlocks(
+    std::optional<std::uint64_t> address, std::uint64_t file_size, const ReadAt& read);
 
 /// A dataspace message as H5O__sdspace_decode reads it: version 1 or 2, rank (at most 32),
 /// flags (bit 0: maximum sizes follow), then version 2 a type byte (2: null, no elements),

@@ -151,7 +151,21 @@ bool LayoutV3(Cursor& c, std::uint64_t version, const LayoutContext& ctx) {
         const std::optional<std::uint64_t> address = c.Get(ctx.sb->offsets, "address");
         const std::optional<std::uint64_t> size =
             address ? c.Get(ctx.sb->lengths, "size") : std::nullopt;
-        return size && CheckContiguous(c, *address, *size, ctx);
+        if (!size || !CheckContiguous(c, *address, *size, ctx)) {
+            return false;
+        }
+        // H5D__contig_init sizes the data as elements x datatype size and H5Dread allocates for
+        // that; a stored size that differs says the datatype or dataspace is corrupt (fuzz
+        // finding: a float of 2 113 929 224 bytes made HDF5 allocate 2 GB for 48 stored bytes).
+        const bool known =
+            ctx.extent && ctx.type_size && ctx.extent->elements != UINT64_MAX &&
+            (ctx.extent->elements == 0 || *ctx.type_size <= UINT64_MAX / ctx.extent->elements);
+        if (known && *size != ctx.extent->elements * *ctx.type_size) {
+            return c.Fail("its contiguous data of " + std::to_string(*size) + " bytes is not the " +
+                          std::to_string(ctx.extent->elements) + " element(s) of " +
+                          std::to_string(*ctx.type_size) + " bytes its dataspace and datatype say");
+        }
+        return true;
     }
     if (*cls == 3) {
         return version >= 4 && c.Skip(ctx.sb->offsets + 4, "virtual dataset heap ID");

@@ -164,7 +164,8 @@ public:
     FileReader(const void* image, std::size_t size, std::string name);
 
     [[nodiscard]] const std::string& path() const { return path_; }
-    /// True if the link `object` (an absolute path like "/scans/labels") exists.
+    /// True if the link `object` (an absolute path like "/scans/labels") exists. Each object on
+    /// the way must be a hard link whose header blocks lie inside the file (else InputError).
     [[nodiscard]] bool Has(const std::string& object) const;
     /// Names in a group, sorted by name.
     [[nodiscard]] std::vector<std::string> Children(const std::string& group) const;
@@ -240,6 +241,14 @@ private:
     /// Throws InputError naming `object` unless its attribute messages are safe for HDF5 to
     /// decode (FindCorruptAttributeMessages; checked once per object).
     void CheckAttributeMessages(const std::string& object) const;
+    /// Before H5Fopen: throws InputError unless the superblock is at byte 0 and the root group's
+    /// object header blocks lie inside the file (FindCorruptHeaderBlocks).
+    void CheckBeforeOpen() const;
+    /// Before HDF5 loads the object header of `object` (whose parent group is checked): throws
+    /// InputError unless its link is a hard link and its header blocks lie inside the file.
+    void CheckHeaderBlocks(const std::string& object) const;
+    /// The object header address of `object` after those checks; nullopt if it does not exist.
+    [[nodiscard]] std::optional<std::uint64_t> HeaderAddress(const std::string& object) const;
     /// Throws InputError naming `dataset` unless the messages H5Dopen2 decodes from its object
     /// header are safe for HDF5 to decode (FindCorruptDatasetMessages).
     void CheckDatasetMessages(const std::string& dataset) const;
@@ -258,6 +267,7 @@ private:
     std::size_t image_size_ = 0;
     mutable std::optional<std::string> heap_problem_;  // "" once checked and found safe
     mutable std::map<std::string, std::string> attribute_problems_;  // per object; "" = safe
+    mutable std::map<std::string, std::uint64_t> header_addresses_;  // objects checked, by path
 };
 
 }  // namespace casmap::io::h5

@@ -326,6 +326,67 @@ TEST(RunFileDatasets, TheFuzzersChunkInputsAreInputErrors) {
                        "dataspace's fixed maximum 181"));
 }
 
+// HDF5 1.10.8 crashes (a read through a null pointer in H5F__accum_read) loading an object
+// header whose continuation block lies past the end of the file, before it decodes anything:
+// casmap walks the root group's blocks before H5Fopen and every other object's before HDF5
+// loads it (fuzz finding on the root group).
+TEST(RunFileDatasets, AHeaderBlockOutsideTheFileIsAnInputError) {
+    const casmap::test::TempDir dir("run_dataset_blocks");
+    WriteRunFile(dir / "run.h5", MakeRun(8, 181));
+    const std::string bytes = ReadBytes(dir / "run.h5");
+    for (const std::string object : {"/", "/scans", "/scans/ranges_m"}) {
+        std::string patched = bytes;
+        const std::size_t header = HeaderAddress(dir / "run.h5", object);
+        // A continuation message (an 8-byte address and an 8-byte length) pointing 64 bytes
+        // past the end, made of the header's own continuation or of a null message.
+        std::optional<Message> slot;
+        for (const Message& m : Messages(bytes, header)) {
+            if ((m.type == 0x10 || m.type == 0) && m.size >= 16 && !slot) {
+                slot = m;
+            }
+        }
+        ASSERT_TRUE(slot.has_value()) << object;
+        PutLe(patched, slot->at, 2, 0x10);
+        PutLe(patched, slot->at + 8, 8, bytes.size() + 64);
+        PutLe(patched, slot->at + 16, 8, 128);
+        EXPECT_EQ(ReadError(patched),
+                  "run.h5: " + object + " (corrupt file: object header block at byte " +
+                      std::to_string(bytes.size() + 64) + " of 128 bytes lies outside the file's " +
+                      std::to_string(bytes.size()) + " bytes)");
+    }
+}
+
+TEST(RunFileDatasets, ContiguousDataOfAnotherSizeIsAnInputError) {
+    // /scans/stamp_s (8 doubles, contiguous, version 3 layout: address and size).
+    const casmap::test::TempDir dir("run_dataset_contiguous");
+    WriteRunFile(dir / "run.h5", MakeRun(8, 181));
+    std::string bytes = ReadBytes(dir / "run.h5");
+    const std::size_t header = HeaderAddress(dir / "run.h5", "/scans/stamp_s");
+    const Message layout = Find(bytes, header, kLayout);
+    ASSERT_EQ(bytes.at(layout.at + 9), 1) << "not contiguous";
+    ASSERT_EQ(Le(bytes, layout.at + 18, 8), 64U);
+    PutLe(bytes, layout.at + 18, 8, 32);
+    EXPECT_EQ(ReadError(bytes),
+              "run.h5: /scans/stamp_s (corrupt file: layout message at byte " +
+                  std::to_string(layout.at) +
+                  ": its contiguous data of 32 bytes is not the 8 element(s) of 8 bytes its "
+                  "dataspace and datatype say)");
+}
+
+TEST(RunFileDatasets, TheFuzzersHeaderInputsAreInputErrors) {
+    const fs::path dir = fs::path(CASMAP_SOURCE_DIR) / "tests/data/fuzz/run_file";
+    // seed_v3_chunked.h5 with the root group's continuation moved to byte 2^64 - 1 (HDF5's
+    // undefined address), and with
+    // /scans/stamp_s's double sized 2 113 929 224 bytes (HDF5 allocated 2 GB to convert it).
+    EXPECT_EQ(ReadError(ReadBytes(dir / "regress_root_continuation_outside.h5")),
+              "run.h5: / (corrupt file: object header block at byte 18446744073709551615 of 255 "
+              "bytes lies outside the file's 23488 bytes)");
+    EXPECT_EQ(ReadError(ReadBytes(dir / "regress_contiguous_type_size.h5")),
+              "run.h5: /scans/stamp_s (corrupt file: layout message at byte 1816: its contiguous "
+              "data of 48 bytes is not the 6 element(s) of 2113929224 bytes its dataspace and "
+              "datatype say)");
+}
+
 std::optional<std::string> CheckDataset(const std::string& bytes, std::uint64_t header) {
     return h5::FindCorruptDatasetMessages(
         header, bytes.size(), [&](std::uint64_t at, std::size_t n, void* out) {
