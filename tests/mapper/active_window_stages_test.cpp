@@ -37,9 +37,9 @@ ActiveWindowConfig SmallWindow(bool consensus) {
     return c;
 }
 
-// A scanner standing at (x, 0.1, 1) pitched 60 deg down, from t = 0 to 10 s.
-core::Trajectory Standing(double x_m) {
-    const core::Pose p = core::PoseFromXyzRpy({x_m, 0.1, 1.0}, {0.0, kPitchRad, 0.0});
+// A scanner standing at (x, y, 1) pitched 60 deg down, heading `yaw`, from t = 0 to 10 s.
+core::Trajectory Standing(double x_m, double y_m = 0.1, double yaw_rad = 0.0) {
+    const core::Pose p = core::PoseFromXyzRpy({x_m, y_m, 1.0}, {0.0, kPitchRad, yaw_rad});
     return core::Trajectory({{0.0, p}, {10.0, p}});
 }
 
@@ -107,6 +107,28 @@ TEST(ActiveWindowConsensus, RecycledRowsStartWithoutConsensusState) {
     // held before (a stale Eq. 6 height of -0.21 m, count and spread would give Eq. 6's -0.21).
     EXPECT_NEAR(Cell(w, 3, 10), (HeightOf(1.20) + HeightOf(1.21)) / 2.0, 1e-6);
     EXPECT_EQ(Cell(w, 3, 10, true), 6.0F);
+}
+
+TEST(ActiveWindowConsensus, ResamplingCarriesTheConsensusState) {
+    ActiveWindow w(SmallWindow(true));
+    (void)w.AddScan(OneBeam(0.1, 1.40), Standing(0.05));  // (0.75, 0.1): lattice cell (3, 0)
+    (void)w.AddScan(OneBeam(0.2, 1.41), Standing(0.05));
+    // Heading 32 deg: the frame turns to 30 deg. The scanner stands so that its beam lands
+    // 0.7 m (range 1.4) ahead at (0.7, 0.1): new lattice cell (3, -2), whose centre (0.756,
+    // 0.090) lies in the old cell (3, 0), so that cell is carried into it.
+    const double yaw = 32.0 * kDeg;
+    const core::Trajectory turned =
+        Standing(0.7 - 0.7 * std::cos(yaw), 0.1 - 0.7 * std::sin(yaw), yaw);
+    (void)w.AddScan(OneBeam(0.3, 1.39), turned);  // lands at (0.696, 0.097): the same new cell
+    ASSERT_EQ(w.stats().turns, 1U);
+    ASSERT_NEAR(w.heading_rad(), 30.0 * kDeg, 1e-12);
+    ASSERT_EQ(w.first_row(), -1);
+    ASSERT_EQ(w.first_col(), -12);
+    // The three heights' mean: the third point joined the carried sum and count (a cleared
+    // state would show the third height alone, Eq. 6 of a one-point cell).
+    const double mean = (HeightOf(1.40) + HeightOf(1.41) + HeightOf(1.39)) / 3.0;
+    EXPECT_NEAR(Cell(w, 4, 10), mean, 1e-6);
+    EXPECT_EQ(Cell(w, 4, 10, true), 9.0F);
 }
 
 TEST(ActiveWindowConsensus, BadSettingsNameTheField) {
