@@ -121,6 +121,10 @@ LiveResult RunLive(const LiveConfig& config,
                    const std::atomic<bool>& stop,
                    const LiveStatusFn& on_status);
 
+/// config.yaml text of a session (the effective configuration: window, mapper mode and
+/// pre-filter with their stages' parameters, CAS, pose limits) reading from `source`.
+[[nodiscard]] std::string LiveConfigYaml(const LiveConfig& config, const std::string& source);
+
 /// status.json text of a status (the format docs/commands/live.md documents).
 [[nodiscard]] std::string StatusJson(const LiveStatus& status, const mapper::ActiveWindow& window);
 
