@@ -254,7 +254,7 @@ Json Simulate(const scenegen::DatasetSpec& spec,
     line["cas_classes"] = scores["cas_classes"];
     line["simulate"] = "casmap simulate --scene scene.yaml --motion " + draw.motion +
                        " --rig rig.yaml --sensor sensor.yaml --seed " +
-                       std::to_string(draw.sensor_seed) + " --out run.h5";
+                       std::to_string(draw.sensor_seed) + " --out again.h5";
     Json list = Json::array();
     std::string sums;
     for (const std::string& f : files) {

@@ -28,6 +28,14 @@ printf 'count: 2\nregion: {length_m: 1.0}\ndomain: {angular_resolutions_deg: [1]
 "$casmap" dataset --spec "$work/ok.yaml" --out "$work/ok" > /dev/null || fail "first run"
 "$casmap" dataset --spec "$work/ok.yaml" --out "$work/ok" > "$work/out" || fail "rerun"
 grep -q "0 generated, 2 reused" "$work/out" || fail "rerun did not reuse: $(cat "$work/out")"
+# The manifest's re-simulate line, run as given in the sample's folder, writes a new run file
+# and leaves the sample's own run.h5 (maps, filters, checksums) alone.
+sample="$work/ok/samples/000000"
+line=$(sed -n 's/.*"simulate":"\([^"]*\)".*/\1/p' "$sample/sample.json")
+case "$line" in "casmap simulate "*) ;; *) fail "no simulate line: $line" ;; esac
+(cd "$sample" && "$casmap" ${line#casmap } > /dev/null) || fail "re-simulate line: $line"
+(cd "$sample" && sha256sum --quiet -c files.sha256) || fail "re-simulate line overwrote a file"
+test "$(ls "$sample" | grep -c '\.h5$')" -eq 2 || fail "re-simulate line wrote no new run file"
 # A run killed part-way (SIGKILL: no clean-up) resumes to the same bytes as a clean run.
 printf 'count: 6\nseed: 9\nregion: {length_m: 1.0}\ndomain: {angular_resolutions_deg: [1]}\n' \
     > "$work/kill.yaml"
@@ -41,4 +49,4 @@ wait $pid 2> /dev/null
 "$casmap" dataset --spec "$work/kill.yaml" --out "$work/killed" --threads 1 > /dev/null ||
     fail "resume after kill"
 diff -r "$work/clean" "$work/killed" || fail "resumed dataset differs from a clean run"
-echo "exit statuses 2, 66 and 0 as documented; a killed run resumes to the same bytes"
+echo "exit statuses 2, 66 and 0 as documented; the re-simulate line keeps run.h5; a killed run resumes to the same bytes"
