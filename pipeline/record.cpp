@@ -104,6 +104,32 @@ std::string ConfigYaml(const RecordOptions& opt, const drivers::Lms200Driver& dr
     return io::EmittedText(out);
 }
 
+/// --mode's parameters, checked before the device is opened and named as the flag: a mean count
+/// outside 2..250 or a sub-range that fits no variant (the device's own variant, when
+/// --variant does not set one, bounds the sub-range again at Connect).
+void CheckMode(const drivers::OutputMode& mode,
+               const std::optional<drivers::Variant>& variant,
+               const std::string& variant_text,
+               const std::string& text) {
+    if (mode.HasMean() && (mode.mean_scans < 2 || mode.mean_scans > 250)) {
+        throw MakeInputError(
+            "", "mode", text,
+            "mean scans N = " + std::to_string(mode.mean_scans) + " (allowed: 2..250)");
+    }
+    if (mode.HasSubRange()) {
+        constexpr int kMostBeams = 401;  // 100 deg at 0.25 deg, the largest variant
+        const int beams = variant ? variant->BeamCount() : kMostBeams;
+        if (mode.first_beam < 1 || mode.first_beam > mode.last_beam || mode.last_beam > beams) {
+            throw MakeInputError(
+                "", "mode", text,
+                "sub-range FIRST-LAST needs 1 <= FIRST <= LAST <= " + std::to_string(beams) +
+                    (variant ? " (the beams of variant " + variant_text + ")"
+                             : " (the most beams of any LMS 200 scan: 100 deg "
+                               "at 0.25 deg)"));
+        }
+    }
+}
+
 drivers::DriverConfig DriverConfigOf(const RecordOptions& opt) {
     drivers::DriverConfig dc;
     dc.device = opt.device;
@@ -112,6 +138,7 @@ drivers::DriverConfig DriverConfigOf(const RecordOptions& opt) {
         dc.variant = ParseVariant(opt.variant);
     }
     dc.output = drivers::ParseOutputMode(opt.mode, "mode");
+    CheckMode(dc.output, dc.variant, opt.variant, opt.mode);
     if (opt.realtime_indices) {
         dc.config_changes.availability = drivers::ConfigBlock::kRealTimeIndices;
     }

@@ -50,6 +50,35 @@ TEST(Record, ChecksNameTheOptionsFields) {
     EXPECT_FALSE(fs::exists(dir / "run.h5"));
 }
 
+// --mode's parameters are checked before connecting (the device here does not exist, so a
+// check left to Connect would report the device instead), named as the "mode" field.
+TEST(Record, ModeParametersAreCheckedBeforeConnecting) {
+    const casmap::test::TempDir tmp("pipeline_record_mode");
+    RecordOptions o;
+    o.device = "/nonexistent/lms";
+    o.out = (tmp.Path() / "run.h5").string();
+    o.timeout_s = 0.05;
+    const auto field_of_record = [&] {
+        try {
+            Record(o, {}, {});
+        } catch (const InputError& e) {
+            return e.field() + " = " + e.value();
+        }
+        return std::string("no error");
+    };
+    for (const char* mode : {"mean:1", "mean:251", "subrange:10-5", "subrange:0-5",
+                             "subrange:1-402", "mean-subrange:300:1-5"}) {
+        o.mode = mode;
+        EXPECT_EQ(field_of_record(), "mode = " + std::string(mode));
+    }
+    o.variant = "100,1";  // 101 beams
+    o.mode = "subrange:1-181";
+    EXPECT_EQ(field_of_record(), "mode = subrange:1-181");
+    o.mode = "subrange:1-101";  // fits: the device is the next problem
+    EXPECT_EQ(field_of_record().rfind("mode", 0), std::string::npos);
+    EXPECT_FALSE(fs::exists(tmp.Path() / "run.h5"));
+}
+
 TEST(Record, ReportsThenWritesWhatWasReceived) {
     const casmap::test::TempDir tmp("pipeline_record_run");
     const fs::path& dir = tmp.Path();
