@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <chrono>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -18,6 +19,15 @@
 namespace casmap::view {
 namespace {
 namespace fs = std::filesystem;
+
+/// A file time as nanoseconds since 1970 (the file clock's own epoch is not Unix's: libstdc++'s
+/// lies in 2174, which made every mtime_ns negative).
+std::int64_t UnixNanoseconds(fs::file_time_type t) {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(
+               std::chrono::file_clock::to_sys(t).time_since_epoch())
+        .count();
+}
+
 using nlohmann::json;
 
 Response Status(int status, const std::string& text) {
@@ -207,9 +217,7 @@ Response Site::List(const std::string& relative) const {
         entries.push_back({{"name", name},
                            {"dir", dir},
                            {"bytes", dir ? 0 : fs::file_size(inner.path, ec)},
-                           {"mtime_ns", std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                            mtime.time_since_epoch())
-                                            .count()}});
+                           {"mtime_ns", UnixNanoseconds(mtime)}});
     }
     return Json({{"path", relative}, {"entries", entries}});
 }

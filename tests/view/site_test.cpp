@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -106,6 +108,22 @@ TEST_F(SiteTest, RefusesSymlinksOutWith403AndHidesThemInListings) {
         EXPECT_NE(e["name"], "leak.txt");
     }
     EXPECT_EQ(list["entries"].size(), 2U);  // bench.json, runs
+}
+
+// mtime_ns counts from 1970, as its name says (it was the file clock's count: negative).
+TEST_F(SiteTest, ListingMtimeIsUnixTime) {
+    const Site site = MakeSite();
+    const nlohmann::json list = nlohmann::json::parse(Get(site, "/api/list").body);
+    ASSERT_FALSE(list["entries"].empty());
+    const std::int64_t now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                    std::chrono::system_clock::now().time_since_epoch())
+                                    .count();
+    constexpr std::int64_t kDayNs = 86'400'000'000'000;
+    for (const auto& e : list["entries"]) {
+        const std::int64_t mtime = e["mtime_ns"].get<std::int64_t>();
+        EXPECT_GT(mtime, now_ns - kDayNs) << e["name"];  // written by this test's fixture
+        EXPECT_LT(mtime, now_ns + kDayNs) << e["name"];
+    }
 }
 
 TEST_F(SiteTest, OnlyGetAndHead) {
