@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "casmap/io/hdf5_chunk_check.hpp"
 #include "casmap/io/hdf5_dataset_header.hpp"
 #include "casmap/io/hdf5_global_heap.hpp"
 #include "casmap/io/hdf5_header_walk.hpp"
@@ -25,7 +26,7 @@ std::optional<std::string> FileReader::CheckBytes(
     if (image_ != nullptr) {
         const auto* bytes = static_cast<const std::uint8_t*>(image_);
         return check(image_size_, [&](std::uint64_t offset, std::size_t size, void* out) {
-            if (offset >= image_size_) {
+            if (offset >= image_size_ || size == 0) {  // `out` may be null for 0 bytes
                 return std::size_t{0};
             }
             const std::size_t n =
@@ -144,6 +145,22 @@ void FileReader::CheckDatasetMessages(const std::string& dataset) const {
         });
     if (problem) {
         throw Error(dataset, "", "corrupt file: " + *problem);
+    }
+}
+
+void FileReader::CheckChunks(const std::string& dataset, hid_t handle) const {
+    std::uint64_t size = image_size_;
+    if (image_ == nullptr) {
+        std::error_code ec;
+        size = std::filesystem::file_size(path_, ec);
+        if (ec) {
+            throw Error(dataset, "", "the file cannot be read to check it");
+        }
+    }
+    if (const std::optional<std::string> problem = FindBadChunk(handle, size)) {
+        const bool unsupported = problem->rfind(kUnsupportedFilter, 0) == 0;
+        throw Error(dataset, "",
+                    (unsupported ? "unsupported encoding: " : "corrupt file: ") + *problem);
     }
 }
 

@@ -178,6 +178,9 @@ void FileReader::ReadRawImpl(const std::string& dataset,
         }
         count *= static_cast<std::size_t>(dims[k]);
     }
+    if (count > 0) {
+        CheckChunks(dataset, d.get());
+    }
     void* buffer = alloc(count, ctx);
     if (count > 0 && H5Dread(d.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer) < 0) {
         throw Error(dataset, "", "cannot be read (corrupt or unsupported encoding)");
@@ -304,6 +307,7 @@ std::optional<std::string> FileReader::ReadStringDataset(const std::string& data
     if (H5Sget_simple_extent_npoints(space.get()) != 1) {
         throw Error(dataset, "", "must be a single string");
     }
+    CheckChunks(dataset, d.get());
     return ReadStringValue(d.get(), type.get(), dataset, false);
 }
 

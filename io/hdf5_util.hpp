@@ -249,6 +249,9 @@ private:
     void CheckHeaderBlocks(const std::string& object) const;
     /// The object header address of `object` after those checks; nullopt if it does not exist.
     [[nodiscard]] std::optional<std::uint64_t> HeaderAddress(const std::string& object) const;
+    /// Before H5Dread of the open dataset `handle`: throws InputError naming `dataset` unless
+    /// its stored chunks come out of their filters at their chunk's size (FindBadChunk).
+    void CheckChunks(const std::string& dataset, hid_t handle) const;
     /// Throws InputError naming `dataset` unless the messages H5Dopen2 decodes from its object
     /// header are safe for HDF5 to decode (FindCorruptDatasetMessages).
     void CheckDatasetMessages(const std::string& dataset) const;

@@ -387,6 +387,59 @@ TEST(RunFileDatasets, TheFuzzersHeaderInputsAreInputErrors) {
               "datatype say)");
 }
 
+// HDF5 1.10.8 copies a whole chunk out of whatever its filters returned: a chunk whose deflate
+// stream inflates to fewer bytes than its dimensions hold is read past its buffer. Here the
+// dataspace's maxima are made unlimited and the chunk twice as tall as the data it stores.
+TEST(RunFileDatasets, AChunkThatInflatesShortIsAnInputError) {
+    Written w = WrittenRun();
+    const Message space = Find(w.bytes, w.ranges, kDataspace);
+    ASSERT_EQ(w.bytes.at(space.at + 10) & 1, 1) << "no maxima";
+    PutLe(w.bytes, space.at + 8 + 8 + 16, 8, ~std::uint64_t{0});
+    const Message layout = Find(w.bytes, w.ranges, kLayout);
+    ASSERT_EQ(Le(w.bytes, layout.at + 8 + 3 + 8, 4), 8U) << "not one chunk of 8 rows";
+    PutLe(w.bytes, layout.at + 8 + 3 + 8, 4, 16);
+    EXPECT_EQ(ReadError(w.bytes),
+              Expected("its chunk at (0, 0) holds 5792 bytes after its filters, not the 11584 "
+                       "of its dimensions"));
+}
+
+TEST(RunFileDatasets, AFilterCasmapDoesNotReadIsAnInputError) {
+    const casmap::test::TempDir dir("run_dataset_filter");
+    int status = 0;
+    const std::string out = test::RunPython(dir.Path(), R"PY(
+import h5py, numpy as np
+with h5py.File(")PY" + (dir / "s.h5").string() + R"PY(", "w", libver="earliest") as f:
+    f["scans/stamp_s"] = np.array([0.0, 1 / 75])
+    f["scans/ranges_m"] = np.full((2, 181), 2.0, np.float32)
+    f.create_dataset("scans/raw", data=np.full((2, 181), 2000, np.uint16), chunks=(2, 181),
+                     scaleoffset=0)
+    f["scans/status"] = np.zeros((2, 181), np.uint8)
+    f["scans"].attrs["start_angle_rad"] = 0.0
+    f["scans"].attrs["angle_step_rad"] = np.pi / 180
+    f["scans"].attrs["beam_period_s"] = 1e-5
+    f["poses/stamp_s"] = np.zeros(0)
+    f["poses/xyz_m"] = np.zeros((0, 3))
+    f["poses/quat_xyzw"] = np.zeros((0, 4))
+)PY",
+                                            &status);
+    ASSERT_EQ(status, 0) << out;
+    EXPECT_EQ(ReadError(ReadBytes(dir / "s.h5")),
+              "run.h5: /scans/raw (unsupported encoding: its filter 6 is not one casmap reads "
+              "(deflate, shuffle, Fletcher-32))");
+}
+
+TEST(RunFileDatasets, TheFuzzersChunkAndBlockInputsAreInputErrors) {
+    const fs::path dir = fs::path(CASMAP_SOURCE_DIR) / "tests/data/fuzz/run_file";
+    // regress_chunk_past_fixed_maximum.h5 with /scans/ranges_m's maxima made unlimited: the
+    // chunk of 6 x 46 336 floats stores 4 344 bytes.
+    EXPECT_EQ(ReadError(ReadBytes(dir / "regress_chunk_inflates_short.h5")),
+              Expected("its chunk at (0, 0) holds 4344 bytes after its filters, not the 1112064 "
+                       "of its dimensions"));
+    // An object header block of 0 bytes (the check passed a null buffer to memcpy: UBSan).
+    EXPECT_EQ(ReadError(ReadBytes(dir / "regress_empty_header_block.h5")),
+              "run.h5: / (corrupt file: its object header cannot be read)");
+}
+
 std::optional<std::string> CheckDataset(const std::string& bytes, std::uint64_t header) {
     return h5::FindCorruptDatasetMessages(
         header, bytes.size(), [&](std::uint64_t at, std::size_t n, void* out) {
