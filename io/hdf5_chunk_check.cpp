@@ -1,6 +1,11 @@
 #include "casmap/io/hdf5_chunk_check.hpp"
 
 #include <zlib.h>
+#if CASMAP_HAVE_LIBDEFLATE
+#include <libdeflate.h>
+
+#include <memory>
+#endif
 
 #include <array>
 #include <cstdint>
@@ -20,6 +25,30 @@ std::string OffsetText(const std::vector<hsize_t>& offset) {
     }
     return text + ")";
 }
+
+#if CASMAP_HAVE_LIBDEFLATE
+// The same with libdeflate (about 2.5 times zlib's speed) into `out`, a chunk's bytes (kept
+// between chunks); nullopt when the stream is not whole or inflates to more (zlib then counts,
+// up to the Fletcher-32 sizes a pipeline allows, and says which). The decompressor is shared:
+// every HDF5 read runs under LibraryLock.
+std::optional<std::uint64_t> InflatedSizeFast(const std::vector<std::uint8_t>& in,
+                                              std::uint64_t chunk_bytes,
+                                              std::vector<std::uint8_t>& out) {
+    struct Free {
+        void operator()(libdeflate_decompressor* d) const { libdeflate_free_decompressor(d); }
+    };
+    static const std::unique_ptr<libdeflate_decompressor, Free> decompressor(
+        libdeflate_alloc_decompressor());
+    out.resize(static_cast<std::size_t>(chunk_bytes));
+    std::size_t produced = 0;
+    if (decompressor == nullptr ||
+        libdeflate_zlib_decompress(decompressor.get(), in.data(), in.size(), out.data(), out.size(),
+                                   &produced) != LIBDEFLATE_SUCCESS) {
+        return std::nullopt;  // not a whole stream, or more bytes than the chunk: zlib says
+    }
+    return produced;
+}
+#endif
 
 // The bytes the zlib stream `in` inflates to (H5Z__filter_deflate's reverse direction: inflate
 // until the stream ends), counted in a small buffer; nullopt when it is not a whole stream or
@@ -91,6 +120,9 @@ std::optional<std::string> FindBadChunk(hid_t dataset, std::uint64_t file_size) 
     const std::uint64_t max_stored = chunk_bytes + chunk_bytes / 8 + 1024;
     std::vector<hsize_t> offset(static_cast<std::size_t>(rank));
     std::vector<std::uint8_t> raw;
+#if CASMAP_HAVE_LIBDEFLATE
+    std::vector<std::uint8_t> scratch;  // libdeflate's output
+#endif
     for (hsize_t c = 0; c < chunks; ++c) {
         unsigned mask = 0;
         haddr_t address = 0;
@@ -121,7 +153,13 @@ std::optional<std::string> FindBadChunk(hid_t dataset, std::uint64_t file_size) 
                 size -= 4;
             } else if (filters[i] == H5Z_FILTER_DEFLATE) {
                 raw.resize(size);
-                const std::optional<std::uint64_t> inflated = InflatedSize(raw, chunk_bytes + 64);
+                std::optional<std::uint64_t> inflated;
+#if CASMAP_HAVE_LIBDEFLATE
+                inflated = InflatedSizeFast(raw, chunk_bytes, scratch);
+#endif
+                if (!inflated) {
+                    inflated = InflatedSize(raw, chunk_bytes + 64);
+                }
                 if (!inflated) {
                     return what + " is not a deflate stream of at most " +
                            std::to_string(chunk_bytes + 64) + " bytes";
