@@ -260,6 +260,9 @@ core::GridGeometry GridCoveringBeams(const std::vector<core::Scan>& scans,
                                      const core::Trajectory& world_T_sensor,
                                      double cell_m,
                                      const std::string& where) {
+    if (!(cell_m > 0.0) || !std::isfinite(cell_m)) {  // else "x0_m/y0_m must be finite" later
+        throw MakeInputError(where, "cell_m", FormatNumber(cell_m), "must be a finite number > 0");
+    }
     double x_lo = std::numeric_limits<double>::infinity();
     double y_lo = x_lo;
     double x_hi = -x_lo;

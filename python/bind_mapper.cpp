@@ -41,7 +41,7 @@ py::tuple Filter(const std::string& method_name,
         py::gil_scoped_release release;
         result = mapper::RunFilter(method, elevation, certainty, params);
     }
-    if (method != mapper::FilterMethod::kCas) {
+    if (!mapper::NeedsCertainty(method)) {  // the baselines; every CAS method has classes
         return py::make_tuple(FromMap(result.elevation), py::none());
     }
     return py::make_tuple(FromMap(result.elevation), FromClasses(result.classes));
@@ -54,11 +54,16 @@ mapper::Region RegionOf(const py::handle& region, int rows, int cols) {
     if (py::isinstance<py::str>(region) && region.cast<std::string>() == "full") {
         return mapper::FullRegion(rows, cols);
     }
-    const auto t = region.cast<std::vector<int>>();
+    const std::string rule =
+        "must be None (the paper's region), 'full' or (row0, col0, rows, cols)";
+    std::vector<int> t;
+    try {
+        t = region.cast<std::vector<int>>();
+    } catch (const py::cast_error&) {  // a str other than 'full', floats, ...
+        throw MakeInputError("", "region", std::string(py::repr(region)), rule);
+    }
     if (t.size() != 4) {
-        throw MakeInputError("", "region", std::to_string(t.size()) + " numbers",
-                             "must be None (the paper's region), 'full' or "
-                             "(row0, col0, rows, cols)");
+        throw MakeInputError("", "region", std::to_string(t.size()) + " numbers", rule);
     }
     return mapper::Region{t[0], t[1], t[2], t[3]};
 }

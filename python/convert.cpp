@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "casmap/core/input_error.hpp"
+#include "casmap/mapper/filters.hpp"
 
 namespace casmap::python {
 namespace {
@@ -90,6 +91,18 @@ core::Raster<std::uint8_t> ToClasses(const py::handle& array, const std::string&
     const auto a = Checked<std::uint8_t>(array, name, 2);
     core::Raster<std::uint8_t> r(static_cast<int>(a.shape(0)), static_cast<int>(a.shape(1)));
     std::copy_n(a.data(), r.data.size(), r.data.begin());
+    // A code beyond CAS_CLASSES would be counted as untouched without a word.
+    const auto bad = std::find_if(r.data.begin(), r.data.end(), [](std::uint8_t v) {
+        return v > static_cast<std::uint8_t>(mapper::PixelClass::kBorder);
+    });
+    if (bad != r.data.end()) {
+        const auto i = static_cast<int>(bad - r.data.begin());
+        throw MakeInputError(name,
+                             "pixel (row " + std::to_string(i / r.cols) + ", col " +
+                                 std::to_string(i % r.cols) + ")",
+                             std::to_string(*bad),
+                             "allowed: 0..3 (CAS_CLASSES: untouched, removed, filled, border)");
+    }
     return r;
 }
 

@@ -28,11 +28,15 @@ __all__ = [
     "Grid", "Mapper", "Poses", "Run", "Scans", "Maps", "filter", "performance_index",
     "cas_classes_percent", "read_run", "write_run", "map_run", "read_map_tiff",
     "write_map_tiff", "with_simulator", "BEAM_STATUS", "BEAM_LABELS", "CAS_CLASSES",
-    "FILTER_METHODS", "LMS200_BEAM_PERIOD_S",
+    "FILTER_METHODS", "ALL_FILTER_METHODS", "LMS200_BEAM_PERIOD_S",
 ]
 
 #: Filter methods of the paper's benchmark, in its order.
 FILTER_METHODS = ("cas", "wiener", "average", "median", "cwm")
+#: Every method casmap.filter and `casmap filter --method` take: the paper's five, then the
+#: CAS variants (docs/commands/filter.md), which return classes like "cas".
+ALL_FILTER_METHODS = FILTER_METHODS + ("cas_terrain", "cas_trail", "cas_median", "cas_edge",
+                                       "cas_hybrid")
 #: core::BeamStatus codes (the `status` arrays).
 BEAM_STATUS = ("ok", "no_return", "dazzle", "overflow", "low_signal", "read_error",
                "out_of_range")
@@ -42,6 +46,23 @@ BEAM_LABELS = ("valid", "mixed", "missing", "spike", "no_target", "dazzled")
 CAS_CLASSES = ("untouched", "removed", "filled", "border")
 #: Seconds between adjacent 1-degree pulses of the LMS 200 (75 Hz mirror): (1/75) / 360.
 LMS200_BEAM_PERIOD_S = (1.0 / 75.0) / 360.0
+
+
+def _whole_number(name: str, value, low: int, high: int, allowed: str) -> int:
+    """`value` as an int in low..high; ValueError "name = value (allowed: ...)" otherwise (a
+    negative seed used to be a pybind11 TypeError, a thread count of -1 passed unchecked)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) \
+            or not low <= int(value) <= high:
+        raise ValueError(f"{name} = {value!r} (allowed: {allowed})")
+    return int(value)
+
+
+def _seed(seed) -> int:
+    return _whole_number("seed", seed, 0, 2**64 - 1, "an integer 0..2**64-1")
+
+
+def _threads(threads) -> int:
+    return _whole_number("threads", threads, 0, 1024, "0 (all cores) or 1..1024, as --threads")
 
 
 def _param_text(name: str, value) -> str:
@@ -54,12 +75,14 @@ def _param_text(name: str, value) -> str:
 
 
 def filter(method: str, elevation, certainty=None, **params):
-    """Runs one of the paper's five filters on an elevation map (float32, metres).
+    """Runs one filter on an elevation map (float32, metres), as `casmap filter`.
 
-    method: "cas", "wiener", "average", "median" or "cwm". certainty (float32 counts) is
-    required by "cas". params: the names of `casmap filter --set`, e.g. k=2, A=12.0,
-    gs_mode="variance", e_term=True, window=5. Returns (filtered, classes): classes is the
-    per-pixel uint8 array of CAS_CLASSES codes, None for the baselines.
+    method: the paper's "cas", "wiener", "average", "median" or "cwm", or a CAS variant
+    (ALL_FILTER_METHODS). certainty (float32 counts) is required by the CAS methods. params:
+    the names of `casmap filter --set`, e.g. k=2, A=12.0, gs_mode="variance", e_term=True,
+    window=5. Returns (filtered, classes): classes is the per-pixel uint8 array of
+    CAS_CLASSES codes (for every CAS method, as the CLI's OUT_classes.tiff), None for the
+    baselines.
     """
     pairs = [(name, _param_text(name, value)) for name, value in params.items()]
     return _casmap._filter(method, elevation, certainty, pairs)
@@ -217,7 +240,7 @@ class Mapper:
 
 
 if with_simulator:
-    from ._casmap import Scene, load_scene, truth
+    from ._casmap import Scene, load_scene
 
     __all__ += ["Scene", "load_scene", "scan_at", "simulate", "truth"]
 
@@ -229,7 +252,7 @@ if with_simulator:
         angles_rad, ranges_m (float32), raw (uint16), status (BEAM_STATUS codes), labels
         (BEAM_LABELS codes), true_range_m.
         """
-        return _casmap._scan_at(scene, [float(v) for v in pose], seed,
+        return _casmap._scan_at(scene, [float(v) for v in pose], _seed(seed),
                                 None if sensor is None else os.fspath(sensor), ideal)
 
     def simulate(scene, motion: str, seed: int = 1, rig=None, sensor=None,
@@ -238,7 +261,13 @@ if with_simulator:
         vehicle; rig and sensor are YAML files (None: the defaults). The result, written
         with write_run, is byte-identical to the CLI's run file; any thread count gives the
         same run."""
-        d = _casmap._simulate(scene, motion, seed,
+        d = _casmap._simulate(scene, motion, _seed(seed),
                               None if rig is None else os.fspath(rig),
-                              None if sensor is None else os.fspath(sensor), speed_m_s, threads)
+                              None if sensor is None else os.fspath(sensor), speed_m_s,
+                              _threads(threads))
         return Run._from_dict(d)
+
+    def truth(scene, grid: Grid, threads: int = 0) -> np.ndarray:
+        """The exact ground-truth elevation (m, float32) of every cell of `grid`: the highest
+        surface point in the cell (as `casmap truth`). Any thread count gives the same map."""
+        return _casmap.truth(scene, grid, _threads(threads))

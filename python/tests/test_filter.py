@@ -8,7 +8,7 @@ import casmap
 from conftest import run_cli
 
 
-@pytest.mark.parametrize("method", casmap.FILTER_METHODS)
+@pytest.mark.parametrize("method", casmap.ALL_FILTER_METHODS)
 def test_filter_equals_cli_bit_for_bit(exe, maps_pair, tmp_path, method):
     h, c, h_tiff, c_tiff = maps_pair
     out = tmp_path / f"{method}.tiff"
@@ -17,11 +17,12 @@ def test_filter_equals_cli_bit_for_bit(exe, maps_pair, tmp_path, method):
     filtered, classes = casmap.filter(method, h, c, window=5)
     assert filtered.dtype == np.float32 and filtered.shape == h.shape
     assert np.array_equal(filtered, casmap.read_map_tiff(out), equal_nan=True)
-    if method == "cas":
-        cli_classes = casmap.read_map_tiff(tmp_path / "cas_classes.tiff")
-        assert np.array_equal(classes.astype(np.float32), cli_classes)
+    classes_tiff = tmp_path / f"{method}_classes.tiff"
+    if method.startswith("cas"):  # every CAS method writes classes, and returns them
+        assert classes is not None and classes.dtype == np.uint8
+        assert np.array_equal(classes.astype(np.float32), casmap.read_map_tiff(classes_tiff))
     else:
-        assert classes is None
+        assert classes is None and not classes_tiff.exists()
 
 
 def test_cas_parameters_by_set_names(exe, maps_pair, tmp_path):
@@ -107,3 +108,19 @@ def test_threads_give_the_same_maps(maps_pair):
         got = list(pool.map(lambda m: casmap.filter(m, h, c)[0], casmap.FILTER_METHODS * 2))
     for i, g in enumerate(got):
         assert np.array_equal(g, expected[i % len(expected)])
+
+
+def test_bad_arguments_are_value_errors_naming_them(maps_pair):
+    h, c, _, _ = maps_pair
+    # A region that is neither None, 'full' nor 4 integers was a pybind11 RuntimeError.
+    for region in ("centre", (0.5, 0, 10, 10), object()):
+        with pytest.raises(ValueError, match=r"^region = .*\(must be None"):
+            casmap.performance_index(h, h, h, region=region)
+    with pytest.raises(ValueError, match=r"^region = 3 numbers"):
+        casmap.performance_index(h, h, h, region=(0, 0, 10))
+    # A class code beyond CAS_CLASSES was counted as untouched.
+    _, classes = casmap.filter("cas", h, c)
+    classes[5, 7] = 9
+    with pytest.raises(ValueError, match=r"^classes: pixel \(row 5, col 7\) = 9 \(allowed: 0..3"):
+        casmap.cas_classes_percent(classes)
+

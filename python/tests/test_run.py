@@ -129,6 +129,31 @@ def test_truth_equals_casmap_truth(exe, course4, tmp_path):
     assert np.array_equal(t, casmap.read_map_tiff(tmp_path / "t.tiff"))
 
 
+@needs_sim
+def test_bad_seed_and_threads_are_value_errors(course4):
+    scene = casmap.load_scene(course4)
+    grid = casmap.Grid(x0_m=1, y0_m=-1, cell_m=0.025, rows=4, cols=4)
+    # A negative seed was a pybind11 TypeError; threads=-1 or 5000 passed unchecked.
+    for kwargs, field in (({"seed": -1}, "seed"), ({"seed": 2**64}, "seed"),
+                          ({"seed": 1.5}, "seed"), ({"threads": -1}, "threads"),
+                          ({"threads": 5000}, "threads"), ({"threads": True}, "threads")):
+        with pytest.raises(ValueError, match=rf"^{field} = "):
+            casmap.simulate(scene, "T", **kwargs)
+    with pytest.raises(ValueError, match=r"^seed = -3 \(allowed: an integer 0..2\*\*64-1\)"):
+        casmap.scan_at(scene, (1, 0, 1, 0, 40, 0), seed=-3)
+    with pytest.raises(ValueError, match=r"^threads = -2 \(allowed: 0 \(all cores\) or 1..1024"):
+        casmap.truth(scene, grid, threads=-2)
+    assert casmap.truth(scene, grid, threads=np.int64(2)).shape == (4, 4)
+
+
+def test_map_run_names_a_bad_cell_size(cli_run):
+    run = casmap.read_run(cli_run)
+    # cell_m = 0 used to be reported as "grid: x0_m/y0_m (must be finite)".
+    for cell in (0.0, -0.025, float("nan")):
+        with pytest.raises(ValueError, match=r"^run: cell_m = .* \(must be a finite number > 0\)"):
+            casmap.map_run(run, cell_m=cell)
+
+
 def test_bad_run_file_raises_the_cli_message(exe, tmp_path):
     bad = tmp_path / "bad.h5"
     bad.write_bytes(b"not hdf5")
