@@ -63,12 +63,30 @@ bool CheckContiguous(Cursor& c,
     return true;
 }
 
-bool CheckCompact(Cursor& c, std::uint64_t size) {
+// H5D__contig_init and H5D__compact_init size a dataset's data as elements x datatype size and
+// H5Dread copies that many bytes; data stored with another size means the datatype, dataspace
+// or layout is corrupt (fuzz findings: a float of 2 113 929 224 bytes made HDF5 allocate 2 GB
+// for 48 stored bytes; a string of 31 bytes in 0 bytes of compact data, whose buffer HDF5 left
+// null, made it copy from address 0).
+bool CheckDataSize(Cursor& c, const char* storage, std::uint64_t size, const LayoutContext& ctx) {
+    const bool known =
+        ctx.extent && ctx.type_size && ctx.extent->elements != UINT64_MAX &&
+        (ctx.extent->elements == 0 || *ctx.type_size <= UINT64_MAX / ctx.extent->elements);
+    if (known && size != ctx.extent->elements * *ctx.type_size) {
+        return c.Fail(std::string("its ") + storage + " data of " + std::to_string(size) +
+                      " bytes is not the " + std::to_string(ctx.extent->elements) +
+                      " element(s) of " + std::to_string(*ctx.type_size) +
+                      " bytes its dataspace and datatype say");
+    }
+    return true;
+}
+
+bool CheckCompact(Cursor& c, std::uint64_t size, const LayoutContext& ctx) {
     if (size > c.left()) {
         return c.Fail("its compact data of " + std::to_string(size) + " bytes does not fit the " +
                       std::to_string(c.left()) + " bytes after its size");
     }
-    return c.Skip(size, "compact data");
+    return c.Skip(size, "compact data") && CheckDataSize(c, "compact", size, ctx);
 }
 
 // Layout versions 1-2 (H5O__layout_decode): dimensionality (1-33), class, 5 reserved bytes, an
@@ -101,7 +119,7 @@ bool LayoutV1(Cursor& c, const LayoutContext& ctx) {
     }
     if (*cls == 0) {
         const std::optional<std::uint64_t> size = c.Get(4, "compact data size");
-        return size && CheckCompact(c, *size);
+        return size && CheckCompact(c, *size, ctx);
     }
     if (*cls == 2) {
         return CheckChunk(c, dims, ctx);
@@ -145,27 +163,14 @@ bool LayoutV3(Cursor& c, std::uint64_t version, const LayoutContext& ctx) {
     }
     if (*cls == 0) {
         const std::optional<std::uint64_t> size = c.Get(2, "compact data size");
-        return size && CheckCompact(c, *size);
+        return size && CheckCompact(c, *size, ctx);
     }
     if (*cls == 1) {
         const std::optional<std::uint64_t> address = c.Get(ctx.sb->offsets, "address");
         const std::optional<std::uint64_t> size =
             address ? c.Get(ctx.sb->lengths, "size") : std::nullopt;
-        if (!size || !CheckContiguous(c, *address, *size, ctx)) {
-            return false;
-        }
-        // H5D__contig_init sizes the data as elements x datatype size and H5Dread allocates for
-        // that; a stored size that differs says the datatype or dataspace is corrupt (fuzz
-        // finding: a float of 2 113 929 224 bytes made HDF5 allocate 2 GB for 48 stored bytes).
-        const bool known =
-            ctx.extent && ctx.type_size && ctx.extent->elements != UINT64_MAX &&
-            (ctx.extent->elements == 0 || *ctx.type_size <= UINT64_MAX / ctx.extent->elements);
-        if (known && *size != ctx.extent->elements * *ctx.type_size) {
-            return c.Fail("its contiguous data of " + std::to_string(*size) + " bytes is not the " +
-                          std::to_string(ctx.extent->elements) + " element(s) of " +
-                          std::to_string(*ctx.type_size) + " bytes its dataspace and datatype say");
-        }
-        return true;
+        return size && CheckContiguous(c, *address, *size, ctx) &&
+               CheckDataSize(c, "contiguous", *size, ctx);
     }
     if (*cls == 3) {
         return version >= 4 && c.Skip(ctx.sb->offsets + 4, "virtual dataset heap ID");

@@ -435,6 +435,11 @@ TEST(RunFileDatasets, TheFuzzersChunkAndBlockInputsAreInputErrors) {
     EXPECT_EQ(ReadError(ReadBytes(dir / "regress_chunk_inflates_short.h5")),
               Expected("its chunk at (0, 0) holds 4344 bytes after its filters, not the 1112064 "
                        "of its dimensions"));
+    // /config_yaml's layout turned into version 2 compact data of 0 bytes for its 31-byte
+    // string: HDF5 copied the string from a null buffer.
+    EXPECT_EQ(ReadError(ReadBytes(dir / "regress_compact_data_size.h5")),
+              "run.h5: /config_yaml (corrupt file: layout message at byte 1024: its compact data "
+              "of 0 bytes is not the 1 element(s) of 31 bytes its dataspace and datatype say)");
     // An object header block of 0 bytes (the check passed a null buffer to memcpy: UBSan).
     EXPECT_EQ(ReadError(ReadBytes(dir / "regress_empty_header_block.h5")),
               "run.h5: / (corrupt file: its object header cannot be read)");
