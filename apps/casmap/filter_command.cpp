@@ -54,11 +54,16 @@ void RunFilterCommand(const FilterOptions& opt) {
     WithFlagNames({{"method", "--method"}, {"out", "--out"}, {"certainty", "--certainty"}},
                   [&] { r = pipeline::FilterMapFiles(options); });
     if (r.classes) {
+        // Labelled with the method: the variants print their own A, G and classes (the
+        // median-based ones cas_trail's, which they keep as their classes).
+        const bool trail_classes =
+            opt.method == "cas_median" || opt.method == "cas_edge" || opt.method == "cas_hybrid";
+        const std::string label = opt.method + (trail_classes ? " (cas_trail's classes)" : "");
         const mapper::ClassReport& c = *r.classes;
         std::printf(
-            "cas: A = %g, G = %g; of %lld processed cells: removed %.1f %%, filled %.1f %%, "
+            "%s: A = %g, G = %g; of %lld processed cells: removed %.1f %%, filled %.1f %%, "
             "untouched %.1f %% (without never-observed: %.1f / %.1f / %.1f %%)\n",
-            options.params.cas.EffectiveA(), options.params.cas.EffectiveG(),
+            label.c_str(), options.params.cas.EffectiveA(), options.params.cas.EffectiveG(),
             static_cast<long long>(c.all.cells), c.all.removed_pct, c.all.filled_pct,
             c.all.untouched_pct, c.observed.removed_pct, c.observed.filled_pct,
             c.observed.untouched_pct);

@@ -138,7 +138,12 @@ TEST_F(FilterCommand, PresetAppliesThePipelinesSectionOfTheMethod) {
                      P("set.tiff"))
                   .code,
               0);
-    ASSERT_EQ(Casmap("filter --method cas_hybrid " + maps + " --out " + P("default.tiff")).code, 0);
+    const Result plain =
+        Casmap("filter --method cas_hybrid " + maps + " --out " + P("default.tiff"));
+    ASSERT_EQ(plain.code, 0);
+    // The stats line names the method (it said "cas:" for every CAS method).
+    EXPECT_EQ(plain.output.rfind("cas_hybrid (cas_trail's classes): A = 12, G = 120; of ", 0), 0U)
+        << plain.output;
     const core::MapF preset = io::ReadMapTiff(dir_ / "preset.tiff");
     EXPECT_EQ(preset.data, io::ReadMapTiff(dir_ / "set.tiff").data);
     EXPECT_NE(preset.data, io::ReadMapTiff(dir_ / "default.tiff").data);
