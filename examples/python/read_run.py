@@ -9,7 +9,12 @@ import numpy as np
 
 import casmap
 
-run = casmap.read_run(sys.argv[1])  # ValueError naming the dataset if the file is bad
+if len(sys.argv) != 2:
+    sys.exit(f"usage: {sys.argv[0]} RUN.h5")
+try:
+    run = casmap.read_run(sys.argv[1])
+except ValueError as err:  # the message names the file, the dataset and the rule
+    sys.exit(f"read_run.py: {err}")
 scans, poses = run.scans, run.poses
 print(f"{len(scans.stamp_s)} scans of {scans.ranges_m.shape[1]} beams, "
       f"{len(poses.stamp_s)} poses, seed {run.seed}")
