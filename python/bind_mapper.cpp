@@ -17,6 +17,7 @@
 #include "casmap/mapper/terrain_mapper.hpp"
 #include "casmap/mapper/unknown.hpp"
 #include "casmap/pipeline/map_run.hpp"
+#include "casmap/pipeline/stream_mapper.hpp"
 #include "convert.hpp"
 
 namespace casmap::python {
@@ -112,6 +113,7 @@ py::dict StatsDict(const mapper::MapperStats& s) {
     py::dict d;
     d["beams_seen"] = s.beams_seen;
     d["beams_not_ok"] = s.beams_not_ok;
+    d["beams_rejected"] = s.beams_rejected;
     d["beams_no_pose"] = s.beams_no_pose;
     d["beams_outside"] = s.beams_outside;
     d["beams_mapped"] = s.beams_mapped;
@@ -194,75 +196,90 @@ void BindMapper(py::module_& m) {
         .def(py::init(&ToTrajectory))
         .def("__len__", &core::Trajectory::size);
 
-    py::class_<mapper::TerrainMapper>(m, "_Mapper")
+    py::class_<pipeline::StreamMapper>(m, "_Mapper")
         .def(py::init([](const core::GridGeometry& grid, int a, double delta_l_m,
-                         double scan_period_s, std::optional<double> consensus_spread_m,
-                         int consensus_min_hits) {
-            mapper::TerrainMapperConfig config;
-            config.grid = grid;
-            config.a = a;
-            config.delta_l_m = delta_l_m;
-            config.scan_period_s = scan_period_s;
+                         double scan_period_s, const std::string& mapper_mode,
+                         const std::string& unknown, const std::string& prefilter,
+                         std::optional<double> consensus_spread_m, int consensus_min_hits,
+                         const std::vector<std::string>& stage_sets) {
+            pipeline::MapSettings settings;
+            settings.a = a;
+            settings.delta_l_m = delta_l_m;
+            settings.mode = pipeline::ParseMapperMode(mapper_mode, "mapper");
+            settings.unknown = mapper::ParseUnknown(unknown, "Mapper", "unknown");
+            settings.prefilter = pipeline::ParsePrefilter(prefilter, "prefilter");
             if (consensus_spread_m) {
-                config.consensus = mapper::ConsensusConfig{*consensus_spread_m, consensus_min_hits};
+                if (settings.mode != pipeline::MapperMode::kConsensus) {
+                    throw MakeInputError("Mapper", "consensus_spread_m",
+                                         pipeline::FormatNumber(*consensus_spread_m),
+                                         "the consensus mapper's parameter, but the mapper mode "
+                                         "is " +
+                                             std::string(pipeline::ToString(settings.mode)));
+                }
+                settings.consensus =
+                    mapper::ConsensusConfig{*consensus_spread_m, consensus_min_hits};
             }
-            return mapper::TerrainMapper(config);
+            pipeline::ApplyStageSettings(settings, stage_sets, "params");
+            return pipeline::StreamMapper(grid, settings, scan_period_s);
         }))
         .def("add_scan",
-             [](mapper::TerrainMapper& self, double stamp_s, const py::handle& ranges_m,
+             [](pipeline::StreamMapper& self, double stamp_s, const py::handle& ranges_m,
                 const py::handle& status, const core::Trajectory& poses,
                 const ScanGeometry& geometry) {
-                 const core::Scan scan = MakeScan(stamp_s, ranges_m, status, geometry);
+                 core::Scan scan = MakeScan(stamp_s, ranges_m, status, geometry);
                  py::gil_scoped_release release;
-                 self.AddScan(scan, poses);
+                 self.AddScan(std::move(scan), poses);
              })
+        .def("finish", &pipeline::StreamMapper::Finish)
         .def_property_readonly(
             "elevation",
-            [](const mapper::TerrainMapper& self) { return FromMap(self.elevation()); })
+            [](const pipeline::StreamMapper& self) { return FromMap(self.elevation()); })
         .def_property_readonly(
             "certainty",
-            [](const mapper::TerrainMapper& self) { return FromMap(self.certainty()); })
-        .def_property_readonly("grid",
-                               [](const mapper::TerrainMapper& self) { return self.config().grid; })
+            [](const pipeline::StreamMapper& self) { return FromMap(self.certainty()); })
+        .def_property_readonly("grid", &pipeline::StreamMapper::grid)
+        .def_property_readonly("waiting", &pipeline::StreamMapper::waiting)
+        .def_property_readonly("finished", &pipeline::StreamMapper::finished)
         .def_property_readonly(
-            "stats", [](const mapper::TerrainMapper& self) { return StatsDict(self.stats()); });
+            "stats", [](const pipeline::StreamMapper& self) { return StatsDict(self.stats()); });
 
     py::class_<ScanGeometry>(m, "_ScanGeometry")
         .def(py::init([](double start, double step, double period, std::vector<double> offsets) {
             return ScanGeometry{start, step, period, std::move(offsets)};
         }));
 
-    m.def("_map_scans", [](const py::dict& run_dict, const py::handle& grid_or_none, double cell_m,
-                           int a, double delta_l_m, const std::string& mapper_mode,
-                           const std::string& unknown, const std::string& prefilter) {
-        const io::RunData run = RunFromDict(run_dict);
-        std::optional<core::GridGeometry> grid;
-        if (!grid_or_none.is_none()) {
-            grid = grid_or_none.cast<core::GridGeometry>();
-        }
-        pipeline::MapSettings settings;
-        settings.a = a;
-        settings.delta_l_m = delta_l_m;
-        settings.mode = pipeline::ParseMapperMode(mapper_mode, "mapper");
-        settings.unknown = mapper::ParseUnknown(unknown, "map_run", "unknown");
-        settings.prefilter = pipeline::ParsePrefilter(prefilter, "prefilter");
-        settings.Validate();
-        pipeline::MappedRun mapped;
-        {
-            py::gil_scoped_release release;
-            if (!grid) {
-                grid = pipeline::GridCoveringBeams(run.scans, run.poses, cell_m, "run");
-            }
-            mapped = pipeline::MapScans(run.scans, run.poses, *grid, settings);
-        }
-        py::dict d;
-        d["elevation"] = FromMap(mapped.elevation);
-        d["certainty"] = FromMap(mapped.certainty);
-        d["grid"] = mapped.config.grid;
-        d["scan_period_s"] = mapped.config.scan_period_s;
-        d["stats"] = StatsDict(mapped.stats);
-        return d;
-    });
+    m.def("_map_scans",
+          [](const py::dict& run_dict, const py::handle& grid_or_none, double cell_m, int a,
+             double delta_l_m, const std::string& mapper_mode, const std::string& unknown,
+             const std::string& prefilter, const std::vector<std::string>& stage_sets) {
+              const io::RunData run = RunFromDict(run_dict);
+              std::optional<core::GridGeometry> grid;
+              if (!grid_or_none.is_none()) {
+                  grid = grid_or_none.cast<core::GridGeometry>();
+              }
+              pipeline::MapSettings settings;
+              settings.a = a;
+              settings.delta_l_m = delta_l_m;
+              settings.mode = pipeline::ParseMapperMode(mapper_mode, "mapper");
+              settings.unknown = mapper::ParseUnknown(unknown, "map_run", "unknown");
+              settings.prefilter = pipeline::ParsePrefilter(prefilter, "prefilter");
+              pipeline::ApplyStageSettings(settings, stage_sets, "params");  // validates
+              pipeline::MappedRun mapped;
+              {
+                  py::gil_scoped_release release;
+                  if (!grid) {
+                      grid = pipeline::GridCoveringBeams(run.scans, run.poses, cell_m, "run");
+                  }
+                  mapped = pipeline::MapScans(run.scans, run.poses, *grid, settings);
+              }
+              py::dict d;
+              d["elevation"] = FromMap(mapped.elevation);
+              d["certainty"] = FromMap(mapped.certainty);
+              d["grid"] = mapped.config.grid;
+              d["scan_period_s"] = mapped.config.scan_period_s;
+              d["stats"] = StatsDict(mapped.stats);
+              return d;
+          });
 }
 
 }  // namespace casmap::python

@@ -174,39 +174,62 @@ def write_run(path, run: Run) -> None:
     _casmap._write_run(os.fspath(path), run._to_dict())
 
 
+def _stage_sets(params) -> list:
+    """{"sweep_jump.margin_m": 0.04, ...} -> ["sweep_jump.margin_m=0.04", ...] (`--set` texts)."""
+    if params is None:
+        return []
+    if not isinstance(params, dict):
+        raise ValueError(f"params = {params!r} (a dict of mapping-stage parameters, e.g. "
+                         "{'sweep_jump.margin_m': 0.04})")
+    return [f"{name}={_param_text(name, value)}" for name, value in params.items()]
+
+
 def map_run(run: Run, grid: Optional[Grid] = None, cell_m: float = 0.025, a: int = 3,
             delta_l_m: float = 0.032, mapper: str = "paper", unknown: str = "zero",
-            prefilter: str = "none"):
+            prefilter: str = "none", params: Optional[dict] = None):
     """Elevation and certainty maps of a run, as `casmap map` builds them.
 
     mapper "paper" (Eq. 1-6), "kalman" or "consensus"; unknown "zero" (the paper) or "nan"; prefilter
     "none", "shadow", "range_jump" or "sweep_jump" (as `casmap map --mapper/--unknown/--prefilter`).
+    params: the mapping stages' parameters by `casmap map --set`'s names, e.g.
+    {"sweep_jump.margin_m": 0.04, "consensus.spread_m": 0.05}; a stage the call does not run
+    is a ValueError, as in `casmap map`.
     grid None: the smallest grid of cell_m cells covering every valid beam. Returns
     (elevation, certainty, grid).
     """
     d = _casmap._map_scans(run._to_dict(), grid, cell_m, a, delta_l_m, mapper, unknown,
-                           prefilter)
+                           prefilter, _stage_sets(params))
     return d["elevation"], d["certainty"], d["grid"]
 
 
 class Mapper:
-    """The terrain mapper (Eq. 1-6) fed scan by scan, e.g. from a live scanner.
+    """The terrain mapper fed scan by scan, e.g. from a live scanner: `map_run`'s mapper modes,
+    unknown conventions, pre-filters and params, one scan at a time.
 
         mapper = casmap.Mapper(casmap.Grid(x0_m=1, y0_m=-1, cell_m=0.025, rows=200, cols=80))
         mapper.add_scan(stamp_s, ranges_m, status, poses)
+        mapper.finish()
         h, c = mapper.elevation, mapper.certainty
 
     consensus_spread_m (None: the paper's Eq. 6) selects the consensus cell height, as
     `casmap map --mapper consensus --set consensus.spread_m=...`: a cell whose heights all lie
     within that spread, over at least consensus_min_hits points, holds their mean.
-    ValueError for a bad value, naming consensus.<field>.
+    prefilter "sweep_jump" compares each scan with the next one(s) (sweep_jump.reach), so a scan
+    is mapped when they have arrived and finish() maps the last; `waiting` counts the scans held
+    back. After finish() the maps equal map_run's on the same scans when scan_period_s is the
+    run's. ValueError for a bad value, naming the field.
     """
 
     def __init__(self, grid: Grid, a: int = 3, delta_l_m: float = 0.032,
-                 scan_period_s: float = 1.0 / 75.0, *, consensus_spread_m: float | None = None,
-                 consensus_min_hits: int = 2):
-        self._mapper = _casmap._Mapper(grid, a, delta_l_m, scan_period_s, consensus_spread_m,
-                                       consensus_min_hits)
+                 scan_period_s: float = 1.0 / 75.0, *, mapper: Optional[str] = None,
+                 unknown: str = "zero", prefilter: str = "none",
+                 consensus_spread_m: float | None = None, consensus_min_hits: int = 2,
+                 params: Optional[dict] = None):
+        if mapper is None:
+            mapper = "paper" if consensus_spread_m is None else "consensus"
+        self._mapper = _casmap._Mapper(grid, a, delta_l_m, scan_period_s, mapper, unknown,
+                                       prefilter, consensus_spread_m, consensus_min_hits,
+                                       _stage_sets(params))
 
     def add_scan(self, stamp_s: float, ranges_m, status, poses: Poses, *,
                  start_angle_rad: float = -math.pi / 2, angle_step_rad: float = math.pi / 180,
@@ -218,6 +241,16 @@ class Mapper:
         offsets = [] if beam_time_offset_s is None else list(map(float, beam_time_offset_s))
         geometry = _casmap._ScanGeometry(start_angle_rad, angle_step_rad, beam_period_s, offsets)
         self._mapper.add_scan(stamp_s, ranges_m, status, poses.trajectory(), geometry)
+
+    def finish(self) -> None:
+        """No more scans: maps the ones the sweep_jump pre-filter still holds back. A later
+        add_scan is a ValueError."""
+        self._mapper.finish()
+
+    @property
+    def waiting(self) -> int:
+        """Scans added but not yet mapped (sweep_jump: up to its reach; 0 after finish())."""
+        return self._mapper.waiting
 
     @property
     def elevation(self) -> np.ndarray:
@@ -235,7 +268,8 @@ class Mapper:
 
     @property
     def stats(self) -> dict:
-        """beams_seen, beams_not_ok, beams_no_pose, beams_outside, beams_mapped."""
+        """beams_seen, beams_not_ok, beams_rejected (by the pre-filter), beams_no_pose,
+        beams_outside, beams_mapped."""
         return self._mapper.stats
 
 

@@ -186,3 +186,51 @@ def test_write_and_read_a_recorded_style_run(tmp_path):
     with pytest.raises(ValueError, match="scans.status"):
         bad = casmap.Scans(**{**scans.__dict__, "status": status[:, :10]})
         casmap.write_run(tmp_path / "x.h5", casmap.Run(scans=bad, poses=poses))
+
+
+@needs_sim
+def test_stage_params_and_streamed_prefilter_equal_casmap_map(exe, cli_run, tmp_path):
+    run = casmap.read_run(cli_run)
+    grid, s = run.maps.grid, run.scans
+    period = float(np.median(np.diff(s.stamp_s)))
+    # params: `casmap map --set`'s names; the maps equal the program's with the same --set.
+    run_cli(exe, "map", cli_run, "--out", tmp_path / "sj", "--prefilter", "sweep_jump",
+            "--set", "sweep_jump.margin_m=0.03", "--set", "sweep_jump.max_angle_deg=5")
+    params = {"sweep_jump.margin_m": 0.03, "sweep_jump.max_angle_deg": 5}
+    h, c, _ = casmap.map_run(run, grid=grid, prefilter="sweep_jump", params=params)
+    assert np.array_equal(h, casmap.read_map_tiff(tmp_path / "sj" / "elevation.tiff"))
+    assert np.array_equal(c, casmap.read_map_tiff(tmp_path / "sj" / "certainty.tiff"))
+    default_h, _, _ = casmap.map_run(run, grid=grid, prefilter="sweep_jump")
+    assert not np.array_equal(h, default_h)  # the parameters were applied
+    run_cli(exe, "map", cli_run, "--out", tmp_path / "cs", "--mapper", "consensus",
+            "--set", "consensus.spread_m=0.05")
+    ch, _, _ = casmap.map_run(run, grid=grid, mapper="consensus",
+                              params={"consensus.spread_m": 0.05})
+    assert np.array_equal(ch, casmap.read_map_tiff(tmp_path / "cs" / "elevation.tiff"))
+    # The scan-by-scan Mapper with the same pre-filter holds one scan back (reach 1) and, once
+    # finished, gives map_run's maps bit for bit, with every rejection counted.
+    mapper = casmap.Mapper(grid, scan_period_s=period, mapper="consensus",
+                           prefilter="sweep_jump", params=params)
+    for k in range(len(s.stamp_s)):
+        mapper.add_scan(s.stamp_s[k], s.ranges_m[k], s.status[k], run.poses,
+                        start_angle_rad=s.start_angle_rad, angle_step_rad=s.angle_step_rad,
+                        beam_period_s=s.beam_period_s)
+        assert mapper.waiting == 1
+    mapper.finish()
+    assert mapper.waiting == 0
+    both_h, both_c, _ = casmap.map_run(run, grid=grid, mapper="consensus",
+                                       prefilter="sweep_jump", params=params)
+    assert np.array_equal(mapper.elevation, both_h)
+    assert np.array_equal(mapper.certainty, both_c)
+    assert mapper.stats["beams_rejected"] > 0
+    with pytest.raises(ValueError, match="after Finish"):
+        mapper.add_scan(s.stamp_s[0], s.ranges_m[0], s.status[0], run.poses)
+    # Bad input: ValueError naming the parameter or the rule.
+    with pytest.raises(ValueError, match="pre-filter is none"):
+        casmap.map_run(run, grid=grid, params={"sweep_jump.margin_m": 0.03})
+    with pytest.raises(ValueError, match="sweep_jump.margin_m"):
+        casmap.Mapper(grid, prefilter="sweep_jump", params={"sweep_jump.margin_m": -1})
+    with pytest.raises(ValueError, match="consensus_spread_m"):
+        casmap.Mapper(grid, mapper="kalman", consensus_spread_m=0.02)
+    with pytest.raises(ValueError, match="params"):
+        casmap.map_run(run, grid=grid, params=[("sweep_jump.margin_m", 0.03)])
