@@ -98,6 +98,7 @@ check_install() {
     "$ex/read_run" "$work/run.h5"
     $python examples/python/read_run.py "$work/run.h5"
     $python examples/python/read_run_h5py.py "$work/run.h5"
+    $python examples/python/stream_map.py "$work/run.h5"
 
     # live_record_and_map against the virtual scanner serving the run.
     "$casmap" serve --run "$work/run.h5" --link "$work/lms" >/dev/null 2>&1 &
