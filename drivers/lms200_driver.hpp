@@ -180,6 +180,9 @@ private:
                      std::uint8_t reply_cmd = 0);
     /// Reads and parses what arrives within `timeout_s`; returns the number of bytes read.
     std::size_t ReadSome(double timeout_s);
+    /// Hands the telegrams of one read (arrived_) to OnTelegram, in order, after bounding each
+    /// measured-value telegram's arrival by the next one's (see ReadSome).
+    void DeliverArrived();
     void OnTelegram(const Telegram& t, double arrival_s);
     bool TryReconnect(Clock::time_point deadline);
 
@@ -203,10 +206,13 @@ private:
     /// ScanClockConfig::warmup_scans of them, then all get that envelope's phase.
     struct HeldScan {
         core::Scan scan;
-        std::int64_t k = 0;    // grid index
-        double shift_s = 0.0;  // scan.stamp_s - grid stamp (sub-range / partial beam 0)
+        std::int64_t k = 0;     // grid index
+        double shift_s = 0.0;   // scan.stamp_s - grid stamp (sub-range / partial beam 0)
+        double latest_s = 0.0;  // what the scan clock was given
     };
     std::vector<HeldScan> held_;
+    /// Stamps the held scans with the envelope's phase (see OnValues).
+    void ReleaseHeld(bool indexed);
     std::uint64_t sync_outliers_ = 0;  // of the clocks before the last reconnect
     double pending_arrival_s_ = 0.0;   // completion of the telegram waiting for its follower
     bool has_pending_arrival_ = false;
@@ -215,6 +221,7 @@ private:
     Clock::time_point last_byte_;
     bool starting_output_ = false;  // telegrams right after the mode's A0 are the stream's
     std::vector<std::pair<Telegram, double>> early_;
+    std::vector<std::pair<Telegram, double>> arrived_;  // telegrams of the current read
 };
 
 }  // namespace casmap::drivers

@@ -44,12 +44,23 @@ std::size_t Lms200Driver::ReadSome(double timeout_s) {
         hung_up = e;  // the line went dead: a telegram completed before stands
     }
     const double arrival_s = WallNowS();
-    const TelegramParser::Callback cb = [this, arrival_s](ParserEvent e, const Telegram& t) {
+    // When this read returned, every byte of it had arrived; a byte followed by m more in the
+    // same read arrived at least m byte times earlier (a serial line carries them one after
+    // the other). So a telegram that ends inside the read is stamped that much earlier: after
+    // a stall of this process the backlog of telegrams no longer looks late by the stall,
+    // which would put them into later sweep slots (ServeRecord.AStalledScanner...).
+    const double byte_s = ByteTimeS(port_->baud());
+    const std::uint64_t fed_before = parser_.counters().bytes;
+    const TelegramParser::Callback cb = [&](ParserEvent e, const Telegram& t) {
         switch (e) {
-            case ParserEvent::kTelegram:
-                OnTelegram(t, has_pending_arrival_ ? pending_arrival_s_ : arrival_s);
+            case ParserEvent::kTelegram: {
+                const std::uint64_t after = n - (parser_.counters().bytes - fed_before);
+                arrived_.emplace_back(t, has_pending_arrival_
+                                             ? pending_arrival_s_
+                                             : arrival_s - static_cast<double>(after) * byte_s);
                 has_pending_arrival_ = false;
                 break;
+            }
             case ParserEvent::kAckByte:
                 saw_ack_ = saw_ack_ || parser_.InSync();  // an ACK inside noise means nothing
                 break;
@@ -67,6 +78,7 @@ std::size_t Lms200Driver::ReadSome(double timeout_s) {
     };
     if (hung_up) {
         parser_.Idle(cb);
+        DeliverArrived();
         throw *hung_up;
     }
     if (n == 0) {
@@ -78,11 +90,13 @@ std::size_t Lms200Driver::ReadSome(double timeout_s) {
             parser_.Timeout(cb);  // a telegram stopped short: damaged
             saw_bad_crc_ = saw_bad_crc_ || MaybeAwaited(parser_.last_rejected_command());
         }
+        DeliverArrived();
         return 0;
     }
     last_byte_ = Clock::now();
     const std::uint64_t bad_headers = parser_.counters().bad_headers;
     parser_.Feed(std::span(buffer_.data(), n), cb);
+    DeliverArrived();
     if (parser_.counters().bad_headers != bad_headers) {  // e.g. a reply that lost a LEN byte
         saw_bad_crc_ = saw_bad_crc_ || MaybeAwaited(parser_.last_rejected_command());
     }
@@ -91,6 +105,29 @@ std::size_t Lms200Driver::ReadSome(double timeout_s) {
         has_pending_arrival_ = true;
     }
     return n;
+}
+
+void Lms200Driver::DeliverArrived() {
+    // The scanner sends a measured-value telegram when its sweep (or turn, or mean) is
+    // complete, at most one per telegram period, and the line is free then (the scan clock's
+    // premise): of two telegrams in one read, the first arrived at least one period before the
+    // second. Within a backlog read at once this bounds every telegram by the last one, the
+    // least delayed. (Bytes before a telegram that delay it, e.g. line noise, could make the
+    // bound early by their transmission time.)
+    if (streaming_ || starting_output_) {
+        const double period_s = TelegramPeriodS(info_.output, info_.variant);
+        for (std::size_t i = arrived_.size(); i-- > 1;) {
+            if (IsMeasuredValues(arrived_[i - 1].first.command) &&
+                IsMeasuredValues(arrived_[i].first.command)) {
+                arrived_[i - 1].second =
+                    std::min(arrived_[i - 1].second, arrived_[i].second - period_s);
+            }
+        }
+    }
+    for (const auto& [t, arrival_s] : arrived_) {
+        OnTelegram(t, arrival_s);
+    }
+    arrived_.clear();
 }
 
 void Lms200Driver::OnTelegram(const Telegram& t, double arrival_s) {
@@ -163,15 +200,36 @@ void Lms200Driver::OnValues(const MeasuredValues& v, double arrival_s, std::size
         ready_.push_back(std::move(scan));
         return;
     }
-    held_.push_back({std::move(scan), clock_.last_index(), shift_s});
+    held_.push_back({std::move(scan), clock_.last_index(), shift_s, latest_s});
     if (clock_.scans() == hold) {  // re-stamp the first scans with the better phase
-        for (HeldScan& h : held_) {
-            h.scan.stamp_s =
-                clock_.phase_s() + static_cast<double>(h.k) * clock_.period_s() + h.shift_s;
-            ready_.push_back(std::move(h.scan));
-        }
-        held_.clear();
+        ReleaseHeld(indexed);
     }
+}
+
+void Lms200Driver::ReleaseHeld(bool indexed) {
+    const double phase_s = clock_.phase_s();
+    const double period_s = clock_.period_s();
+    if (!indexed) {
+        // The slots the clock gave the first scans came from a coarse phase: one scan more
+        // than half a period late (this process stalled) got the next slot, and the scans
+        // after it followed, so the envelope then moved a period back and would put every
+        // scan before it a period early. Place them again with the final phase, from the
+        // last one (whose slot the clock goes on from) back: in the slot its own latest stamp
+        // allows (latency up to 1 - guard periods) if that is later than the clock's, never
+        // earlier (the envelope may have left the scan out as an outlier), and before the
+        // next scan's.
+        const double guard = ScanClockConfig{}.guard;
+        for (std::size_t i = held_.size() - 1; i-- > 0;) {
+            const auto own = static_cast<std::int64_t>(
+                std::floor((held_[i].latest_s - phase_s) / period_s + guard));
+            held_[i].k = std::min(std::max(own, held_[i].k), held_[i + 1].k - 1);
+        }
+    }
+    for (HeldScan& h : held_) {
+        h.scan.stamp_s = phase_s + static_cast<double>(h.k) * period_s + h.shift_s;
+        ready_.push_back(std::move(h.scan));
+    }
+    held_.clear();
 }
 
 }  // namespace casmap::drivers
