@@ -91,6 +91,9 @@ struct VirtualLms200Stats {
     std::uint64_t collision_faults = 0;  // telegrams sent with a CRC-preserving byte drop
     std::uint64_t config_writes = 0;     // accepted 0x77 (EEPROM writes)
     std::uint64_t disconnects = 0;
+    /// B0 telegrams written whole (SentScan::intact) but not yet read by the client when the
+    /// device vanished (the scanner waits at most 0.1 s for that): lost with the device.
+    std::uint64_t scans_unread_at_disconnect = 0;
     bool source_exhausted = false;
     int baud = 9600;
     std::uint8_t operating_mode = mode::kRequest;
