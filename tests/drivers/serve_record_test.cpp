@@ -95,12 +95,19 @@ TEST(ServeRecord, At38400EveryScanArrivesIntactAtTheLineRate) {
     std::sort(late_s.begin(), late_s.end());
     EXPECT_GT(late_s.front(), -0.004);
     EXPECT_LT(late_s[late_s.size() / 2], 1.0 / 75.0 + 0.004);  // median
-    // 372-byte telegrams at 38400 baud: 96.9 ms each, so about 10.3 scans/s (not 75).
+    // 372-byte telegrams at 38400 baud: 96.9 ms each, so about 10.3 scans/s (not 75). Counted
+    // in sweeps, not on this process's clock (which a loaded machine stalls): the scanner sends
+    // the newest sweep whenever the line is free, 7.27 sweep periods after the last, so
+    // consecutive scans are 7 or 8 sweeps apart (more only if the scanner's thread stalled).
     const double rate = 5.0 / (r.arrival_s[5] - r.arrival_s[0]);
-    std::printf("38400 baud: %.2f scans/s\n", rate);
-    EXPECT_GT(rate, 6.0);  // a loaded test machine may read late, never early
-    EXPECT_LT(rate, 10.8);
-    EXPECT_GT(r.scans[5].beams[0].raw - r.scans[0].beams[0].raw, 25);  // sweeps were skipped
+    std::printf("38400 baud: %.2f scans/s as read\n", rate);
+    std::vector<std::uint64_t> gaps;
+    for (std::size_t i = 1; i < r.scans.size(); ++i) {
+        gaps.push_back(r.scans[i].beams[0].raw - r.scans[i - 1].beams[0].raw);
+        EXPECT_GE(gaps.back(), 7U) << "scan " << i;  // the line's rate: <= 10.3 scans/s
+    }
+    std::sort(gaps.begin(), gaps.end());
+    EXPECT_LE(gaps[gaps.size() / 2], 8U);  // and the scanner keeps the line busy
     EXPECT_GT(scanner.stats().scans_skipped, 0U);
     const DriverCounters c = driver.counters();
     EXPECT_EQ(c.crc_errors, 0U);
@@ -144,10 +151,11 @@ TEST(ServeRecord, At500000EverySweepArrivesIntact) {
             ++consecutive;
         }
     }
-    // 732 bytes take 14.6 ms < 26.7 ms per 0.5-degree scan: the line carries every sweep.
+    // 732 bytes take 14.6 ms < 26.7 ms per 0.5-degree scan: the line carries every sweep
+    // (counted in sweeps; the rate as read follows this process's stalls).
     const double rate = 19.0 / (r.arrival_s[19] - r.arrival_s[0]);
-    std::printf("500000 baud, 0.5 deg: %.2f scans/s, %d of 19 consecutive\n", rate, consecutive);
-    EXPECT_GT(rate, 30.0);
+    std::printf("500000 baud, 0.5 deg: %.2f scans/s as read, %d of 19 consecutive\n", rate,
+                consecutive);
     EXPECT_GE(consecutive, 14);
     // Latency correction (14.6 ms transmission + 20 ms interleaved sweep) applied, then the
     // scan clock: the line carries every sweep, so stamps go on the 26.7 ms sweep grid with
@@ -158,7 +166,8 @@ TEST(ServeRecord, At500000EverySweepArrivesIntact) {
     for (const double e : errors) {
         EXPECT_GT(e, -5e-5);
     }
-    // The envelope only ever moves earlier here: the last stamp is as good as the best one.
+    // The envelope only ever moves earlier here: the last stamp is as good as the best one
+    // (1 us: a few roundings of stamps in seconds since 1970, 0.24 us each).
     EXPECT_LT(errors.back(), *std::min_element(errors.begin(), errors.end()) + 1e-6);
     std::printf("500000 baud, 0.5 deg: last stamp error %.1f us\n", errors.back() * 1e6);
     EXPECT_EQ(driver.counters().crc_errors, 0U);
@@ -214,6 +223,9 @@ TEST(ServeRecord, AStalledScannerThreadCatchesUpWithoutLasting) {
     DriverConfig dc;
     dc.device = vc.link_path;
     dc.baud = 500000;
+    // Arrival stamps (arrival - transmission - sweep): each scan's own latency, which is
+    // what the line's schedule decides (the scan clock would also move stamps between slots).
+    dc.stamps = StampMode::kArrival;
     Lms200Driver driver(dc);
     driver.Connect();
     const Recorded r = Record(driver, 30, 1.0);
@@ -230,11 +242,17 @@ TEST(ServeRecord, AStalledScannerThreadCatchesUpWithoutLasting) {
             after.push_back(error_s);
         }
     }
-    // A few telegrams after each stall the line is on the mirror's schedule again (a lasting
-    // lag would leave every later stamp about 20 ms late).
+    // A few telegrams after each stall the line is on the mirror's schedule again: a lasting
+    // lag would leave every later telegram about 20 ms late. This process's own latency only
+    // ever adds (and on a loaded machine often exceeds 5 ms), so the least late of each set
+    // tells; no telegram is early (beyond the emulator's 20 us byte-time pacing and rounding).
     ASSERT_FALSE(between.empty());
-    EXPECT_LT(MedianAbs(between), 0.005);
-    EXPECT_LT(MedianAbs(after), 0.005);
+    ASSERT_FALSE(after.empty());
+    EXPECT_LT(*std::min_element(between.begin(), between.end()), 0.005);
+    EXPECT_LT(*std::min_element(after.begin(), after.end()), 0.005);
+    for (const std::vector<double>* set : {&between, &after}) {
+        EXPECT_GT(*std::min_element(set->begin(), set->end()), -5e-5);
+    }
 }
 
 TEST(ServeRecord, FaultsAreRejectedAndCountedAndTheDriverRecovers) {
@@ -282,13 +300,15 @@ TEST(ServeRecord, FaultsAreRejectedAndCountedAndTheDriverRecovers) {
     const DriverCounters c = driver.counters();
     std::printf(
         "sent intact %zu damaged %zu received %zu | faults crc %llu drop %llu garbage %llu "
-        "disconnects %llu | driver crc %llu bad_headers %llu dropped %llu resyncs %llu "
+        "disconnects %llu unread at disconnect %llu | driver crc %llu bad_headers %llu dropped "
+        "%llu resyncs %llu "
         "reconnects %llu\n",
         log.intact.size(), log.damaged.size(), received.size(),
         static_cast<unsigned long long>(st.crc_faults),
         static_cast<unsigned long long>(st.drop_faults),
         static_cast<unsigned long long>(st.garbage_faults),
         static_cast<unsigned long long>(st.disconnects),
+        static_cast<unsigned long long>(st.scans_unread_at_disconnect),
         static_cast<unsigned long long>(c.crc_errors),
         static_cast<unsigned long long>(c.bad_headers),
         static_cast<unsigned long long>(c.dropped_bytes),
@@ -317,8 +337,9 @@ TEST(ServeRecord, FaultsAreRejectedAndCountedAndTheDriverRecovers) {
                 static_cast<unsigned long long>(c.bad_followers),
                 static_cast<unsigned long long>(c.malformed));
     // Also, at each disconnect the scanner waits at most 0.1 s for the client to read what is
-    // already on the line: a reader stalled longer (a loaded machine) loses that telegram.
-    EXPECT_LE(lost, c.bad_followers + st.disconnects);
+    // already on the line: a reader stalled longer (a loaded machine) loses what is left, one
+    // telegram or a whole pty buffer of them; the scanner counts those.
+    EXPECT_LE(lost, c.bad_followers + st.scans_unread_at_disconnect);
     EXPECT_LE(c.bad_followers, st.garbage_faults + st.drop_faults);
     EXPECT_GT(st.crc_faults + st.drop_faults, 0U);
     EXPECT_GT(st.garbage_bytes, 0U);
