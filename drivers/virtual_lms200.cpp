@@ -7,7 +7,6 @@
 #include <sys/ioctl.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -203,13 +202,10 @@ void VirtualLms200::Impl::Finish(Chunk& c) {
     if (c.scan_index) {
         if (c.intact) {
             ++stats.scans_sent;
-            scan_ends.push_back(bytes_written);
-            if (scan_ends.size() > 64) {  // > what a pty buffer holds (4 KB: 11 telegrams)
-                scan_ends.pop_front();
-            }
         }
         if (observer) {
-            observer(SentScan{*c.scan_index, c.intact, c.beam0_wall_s, c.partial, c.command});
+            observer(SentScan{*c.scan_index, c.intact, c.beam0_wall_s, c.partial, c.command,
+                              stats.disconnects});
         }
     }
     if (c.baud_after != 0) {
@@ -246,7 +242,6 @@ void VirtualLms200::Impl::Transmit(Clock::time_point now) {
             c.intact = false;
         }
         stats.bytes_sent += n;
-        bytes_written += written;
         c.pos += n;
         next_byte += Duration(static_cast<double>(n) * byte_s);
         if (c.pos == c.bytes.size()) {
@@ -259,7 +254,8 @@ void VirtualLms200::Impl::Transmit(Clock::time_point now) {
 void VirtualLms200::Impl::Disconnect(const std::atomic<bool>& stop) {
     for (Chunk& c : tx) {
         if (c.scan_index && observer) {
-            observer(SentScan{*c.scan_index, false, c.beam0_wall_s, c.partial, c.command});
+            observer(SentScan{*c.scan_index, false, c.beam0_wall_s, c.partial, c.command,
+                              stats.disconnects});
         }
     }
     tx.clear();
@@ -269,13 +265,6 @@ void VirtualLms200::Impl::Disconnect(const std::atomic<bool>& stop) {
     while (pty.Unread() > 0 && Clock::now() < drain_until) {
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
-    // A client stalled longer loses what is left: every intact telegram whose last byte is
-    // among the unread ones (count them, so that a test can tell this loss from others).
-    const auto unread = static_cast<std::uint64_t>(std::max(0, pty.Unread()));
-    for (const std::uint64_t end : scan_ends) {
-        stats.scans_unread_at_disconnect += end + unread > bytes_written ? 1U : 0U;
-    }
-    scan_ends.clear();
     pty.Close();
     ++stats.disconnects;
     const Clock::time_point back = Clock::now() + Duration(cfg.faults.offline_s);

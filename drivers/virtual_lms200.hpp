@@ -91,9 +91,6 @@ struct VirtualLms200Stats {
     std::uint64_t collision_faults = 0;  // telegrams sent with a CRC-preserving byte drop
     std::uint64_t config_writes = 0;     // accepted 0x77 (EEPROM writes)
     std::uint64_t disconnects = 0;
-    /// B0 telegrams written whole (SentScan::intact) but not yet read by the client when the
-    /// device vanished (the scanner waits at most 0.1 s for that): lost with the device.
-    std::uint64_t scans_unread_at_disconnect = 0;
     bool source_exhausted = false;
     int baud = 9600;
     std::uint8_t operating_mode = mode::kRequest;
@@ -109,6 +106,9 @@ struct SentScan {
     double beam0_wall_s = 0.0;
     int partial = -1;             // partial scan number in mode 0x2A, else -1
     std::uint8_t command = 0xB0;  // B0, B6, B7 or BF
+    /// Disconnects before it was sent: a telegram the client had not read when the device
+    /// next vanished is lost with it (however many the pty buffered).
+    std::uint64_t connection = 0;
 };
 
 class VirtualLms200 {

@@ -79,12 +79,8 @@ struct VirtualLms200::Impl {
     // Line and mirror.
     std::deque<Chunk> tx;
     Clock::time_point next_byte;
-    Clock::time_point epoch;          // mirror turn 0
-    double epoch_wall_s = 0.0;        // the same instant on the system clock
-    std::uint64_t bytes_written = 0;  // accepted by the pty (bytes_sent less bytes_lost)
-    /// The last scan telegrams written, with bytes_written after their last byte: those the
-    /// client has not read when the device vanishes are lost (Disconnect).
-    std::deque<std::uint64_t> scan_ends;
+    Clock::time_point epoch;    // mirror turn 0
+    double epoch_wall_s = 0.0;  // the same instant on the system clock
     std::optional<std::int64_t> origin_turn;
     std::optional<std::int64_t> last_sent_unit;  // telegram unit last queued (UnitTurns)
     Clock::time_point last_rx;

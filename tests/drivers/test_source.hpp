@@ -57,12 +57,14 @@ struct SentLog {
     std::set<std::uint64_t> intact;
     std::set<std::uint64_t> damaged;
     std::map<std::uint64_t, double> beam0_wall_s;
+    std::map<std::uint64_t, std::uint64_t> connection;  // SentScan::connection
     std::condition_variable recorded;
     void Record(const SentScan& s) {
         {
             std::lock_guard lock(mutex);
             (s.intact ? intact : damaged).insert(s.index);
             beam0_wall_s[s.index] = s.beam0_wall_s;
+            connection[s.index] = s.connection;
         }
         recorded.notify_all();
     }
