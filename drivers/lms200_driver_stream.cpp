@@ -108,20 +108,17 @@ std::size_t Lms200Driver::ReadSome(double timeout_s) {
 }
 
 void Lms200Driver::DeliverArrived() {
-    // The scanner sends a measured-value telegram when its sweep (or turn, or mean) is
-    // complete, at most one per telegram period, and the line is free then (the scan clock's
-    // premise): of two telegrams in one read, the first arrived at least one period before the
-    // second. Within a backlog read at once this bounds every telegram by the last one, the
-    // least delayed. (Bytes before a telegram that delay it, e.g. line noise, could make the
-    // bound early by their transmission time.)
-    if (streaming_ || starting_output_) {
-        const double period_s = TelegramPeriodS(info_.output, info_.variant);
-        for (std::size_t i = arrived_.size(); i-- > 1;) {
-            if (IsMeasuredValues(arrived_[i - 1].first.command) &&
-                IsMeasuredValues(arrived_[i].first.command)) {
-                arrived_[i - 1].second =
-                    std::min(arrived_[i - 1].second, arrived_[i].second - period_s);
-            }
+    // The scanner sends one measured-value telegram per telegram period (BoundArrivalsInRead).
+    // (Bytes before a telegram that delay it, e.g. line noise, could make the bound early by
+    // their transmission time.)
+    if ((streaming_ || starting_output_) && arrived_.size() > 1) {
+        std::vector<ReadTelegram> read(arrived_.size());
+        for (std::size_t i = 0; i < arrived_.size(); ++i) {
+            read[i] = {arrived_[i].second, IsMeasuredValues(arrived_[i].first.command)};
+        }
+        BoundArrivalsInRead(read, TelegramPeriodS(info_.output, info_.variant));
+        for (std::size_t i = 0; i < arrived_.size(); ++i) {
+            arrived_[i].second = read[i].arrival_s;
         }
     }
     for (const auto& [t, arrival_s] : arrived_) {
@@ -208,25 +205,22 @@ void Lms200Driver::OnValues(const MeasuredValues& v, double arrival_s, std::size
 
 void Lms200Driver::ReleaseHeld(bool indexed) {
     const double phase_s = clock_.phase_s();
-    const double period_s = clock_.period_s();
-    if (!indexed) {
-        // The slots the clock gave the first scans came from a coarse phase: one scan more
-        // than half a period late (this process stalled) got the next slot, and the scans
-        // after it followed, so the envelope then moved a period back and would put every
-        // scan before it a period early. Place them again with the final phase, from the
-        // last one (whose slot the clock goes on from) back: in the slot its own latest stamp
-        // allows (latency up to 1 - guard periods) if that is later than the clock's, never
-        // earlier (the envelope may have left the scan out as an outlier), and before the
-        // next scan's.
-        const double guard = ScanClockConfig{}.guard;
-        for (std::size_t i = held_.size() - 1; i-- > 0;) {
-            const auto own = static_cast<std::int64_t>(
-                std::floor((held_[i].latest_s - phase_s) / period_s + guard));
-            held_[i].k = std::min(std::max(own, held_[i].k), held_[i + 1].k - 1);
+    if (!indexed) {  // a late scan may have pushed the clock's first slots (ReslotHeldScans)
+        std::vector<std::int64_t> k;
+        std::vector<double> latest_s;
+        for (const HeldScan& h : held_) {
+            k.push_back(h.k);
+            latest_s.push_back(h.latest_s);
+        }
+        ScanClockConfig config;
+        config.period_s = clock_.period_s();
+        ReslotHeldScans(k, latest_s, phase_s, config);
+        for (std::size_t i = 0; i < held_.size(); ++i) {
+            held_[i].k = k[i];
         }
     }
     for (HeldScan& h : held_) {
-        h.scan.stamp_s = phase_s + static_cast<double>(h.k) * period_s + h.shift_s;
+        h.scan.stamp_s = phase_s + static_cast<double>(h.k) * clock_.period_s() + h.shift_s;
         ready_.push_back(std::move(h.scan));
     }
     held_.clear();

@@ -115,4 +115,24 @@ double ScanClock::StampIndexed(double latest_s, std::int64_t k) {
     return anchor_s_ + phase_rel_s_ + static_cast<double>(k) * period;
 }
 
+void BoundArrivalsInRead(std::vector<ReadTelegram>& telegrams, double period_s) {
+    for (std::size_t i = telegrams.size(); i-- > 1;) {
+        if (telegrams[i - 1].periodic && telegrams[i].periodic) {
+            telegrams[i - 1].arrival_s =
+                std::min(telegrams[i - 1].arrival_s, telegrams[i].arrival_s - period_s);
+        }
+    }
+}
+
+void ReslotHeldScans(std::vector<std::int64_t>& k,
+                     const std::vector<double>& latest_s,
+                     double phase_s,
+                     const ScanClockConfig& config) {
+    for (std::size_t i = k.size(); i-- > 1;) {
+        const auto own = static_cast<std::int64_t>(
+            std::floor((latest_s[i - 1] - phase_s) / config.period_s + config.guard));
+        k[i - 1] = std::min(std::max(own, k[i - 1]), k[i] - 1);
+    }
+}
+
 }  // namespace casmap::drivers

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <vector>
 
 namespace casmap::drivers {
 
@@ -73,5 +74,28 @@ private:
 
     [[nodiscard]] double StampOnGrid(double latest_s);
 };
+
+/// A telegram of one read from the line, in order.
+struct ReadTelegram {
+    double arrival_s = 0.0;  // the read's time less 10 / baud per byte after it in the read
+    bool periodic = false;   // a measured-value telegram (one per telegram period)
+};
+
+/// Bounds the arrival of each periodic telegram followed by another in the same read by that
+/// one's arrival less `period_s`: the scanner sends one per period, when its sweep is
+/// complete, and the line is free then. A backlog read at once (the host stalled) so keeps the
+/// line's timing instead of looking late by the stall.
+void BoundArrivalsInRead(std::vector<ReadTelegram>& telegrams, double period_s);
+
+/// Grid slots of the scans held during a ScanClock's warm-up, placed again once its phase
+/// `phase_s` is known: `k` holds the clock's slots (the last one stays, the clock goes on from
+/// it); going back, each scan takes the slot its `latest_s` allows (latency up to 1 - guard
+/// periods) when that is later than the clock's, never earlier, and before the next scan's.
+/// A scan more than half a period late in the warm-up pushes the slots after it; once the
+/// phase has moved a period back, the scans before it would otherwise be a period early.
+void ReslotHeldScans(std::vector<std::int64_t>& k,
+                     const std::vector<double>& latest_s,
+                     double phase_s,
+                     const ScanClockConfig& config);
 
 }  // namespace casmap::drivers
