@@ -205,7 +205,7 @@ std::optional<std::string> FindCorruptDatasetMessages(std::uint64_t address,
     const HeaderFile file{*sb, file_size, &read};
     std::map<std::uint16_t, Resolved> first;  // HDF5 decodes the first message of each type
     const std::optional<std::string> walked =
-        WalkHeader(file, address, false, [&](const HeaderMessage& m) -> std::optional<std::string> {
+        WalkHeader(file, address, true, [&](const HeaderMessage& m) -> std::optional<std::string> {
             const bool decoded = m.type == kDatatypeMessage || m.type == kDataspaceMessage ||
                                  m.type == kLayoutMessage || m.type == kFilterPipelineMessage ||
                                  m.type == kFillValueMessage || m.type == kOldFillValueMessage ||

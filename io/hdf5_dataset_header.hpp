@@ -6,8 +6,8 @@
 // value are copied with memcpy (H5O__layout_decode, H5O_fill_new_decode), a filter's name with
 // strlen/strncpy (H5O__pline_decode), an external file list's slots are written into an array
 // sized by another field (H5O__efl_decode), a datatype as io/hdf5_datatype_check.hpp says.
-// Like the attribute check (io/hdf5_object_header.hpp), only version 1 object headers are
-// walked: version 2 headers carry a checksum HDF5 verifies before decoding anything.
+// Like the attribute check (io/hdf5_object_header.hpp), headers of both versions are walked: a
+// version 2 header's checksum stops random corruption, not a crafted file.
 
 #include <cstdint>
 #include <optional>
@@ -33,9 +33,9 @@ namespace casmap::io::h5 {
 /// - external file list: its used slots are no more than its allocated ones and lie inside
 ///   the message.
 /// Returns "<message> message at byte <offset>: <rule broken>" for the first bad message (or
-/// the walk's reason for a bad header block), nullopt when all are sound, the header is a
-/// version 2 one, or HDF5 rejects a field itself before reading past it (a version or rank it
-/// does not know). A superblock that cannot be read at byte 0 is reported.
+/// the walk's reason for a bad header block), nullopt when all are sound, the header is of a
+/// version HDF5 rejects, or HDF5 rejects a field itself before reading past it (a version or rank
+/// it does not know). A superblock that cannot be read at byte 0 is reported.
 [[nodiscard]] std::optional<std::string> FindCorruptDatasetMessages(std::uint64_t address,
                                                                     std::uint64_t file_size,
                                                                     const ReadAt& read);

@@ -69,7 +69,7 @@ using VisitMessage = std::function<std::optional<std::string>(const HeaderMessag
 /// block) and calls `visit` on each message (its data valid during the call); returns the first
 /// reason `visit` or the walk gives (a block outside the file, a message overrunning its
 /// block, more than kMaxHeaderContinuations blocks). A version 2 header is walked only if `v2`
-/// (HDF5 checks its checksums; casmap reads it only to find what a shared reference points at).
+/// (every caller now asks for it: its checksum is no defence against a crafted file).
 [[nodiscard]] std::optional<std::string> WalkHeader(const HeaderFile& file,
                                                     std::uint64_t start,
                                                     bool v2,

@@ -119,7 +119,7 @@ std::optional<std::string> FindCorruptAttributeMessages(std::uint64_t address,
             "its object headers cannot be checked");
     }
     const HeaderFile file{*sb, file_size, &read};
-    return WalkHeader(file, address, false,
+    return WalkHeader(file, address, true,
                       [&](const HeaderMessage& m) -> std::optional<std::string> {
                           if (m.type == kAttributeMessage && (m.flags & kMessageShared) == 0) {
                               return CheckAttribute(file, m);

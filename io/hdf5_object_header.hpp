@@ -5,10 +5,9 @@
 // (H5O_attr_decode) without checking that a NUL ends it inside the message, so a header whose
 // name runs on reads past the end of HDF5's buffer, and copies the attribute's value (datatype
 // size times the dataspace's elements) without comparing its size with the message's (fuzz
-// findings, docs/fuzzing.md). Version 2
-// object headers ("OHDR") carry a checksum HDF5 verifies before decoding anything, so only
-// version 1 headers (the HDF5 1.6 format, which casmap wrote before format 3 and h5py writes by
-// default) need the check.
+// findings, docs/fuzzing.md). Headers of both versions are walked: a version 2 header's
+// checksum stops random corruption, not a crafted file. Attributes a version 2 header stores
+// densely (in a fractal heap, h5py's latest format past 8 attributes) are not checked.
 
 #include <cstdint>
 #include <optional>
@@ -27,9 +26,9 @@ namespace casmap::io::h5 {
 /// does not fit the bytes after the dataspace; a block outside the file; more than
 /// kMaxHeaderContinuations blocks), or nullopt when every attribute message is sound. A shared
 /// (committed) datatype or dataspace is read where the reference points (an object header of
-/// either version), as HDF5 reads it; one in the shared message heap is not checked. A version
-/// 2 header (checksummed) is accepted as it is; a superblock that cannot be read at byte 0 is
-/// reported.
+/// either version), as HDF5 reads it; one in the shared message heap is not checked. A header
+/// of a version HDF5 rejects itself is accepted as it is; a superblock that cannot be read at
+/// byte 0 is reported.
 [[nodiscard]] std::optional<std::string> FindCorruptAttributeMessages(std::uint64_t address,
                                                                       std::uint64_t file_size,
                                                                       const ReadAt& read);

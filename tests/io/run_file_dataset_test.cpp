@@ -549,5 +549,60 @@ with h5py.File(")PY" + (dir / "c.h5").string() + R"PY(", "w", libver="earliest")
                   std::to_string(type.size) + " bytes)");
 }
 
+// A version 2 header's checksum (Jenkins lookup3, which HDF5 exports) only guards against
+// random corruption: a crafted file recomputes it. The dataset check walks version 2 headers
+// too: h5py's latest format, a compact dataset whose layout says 4 096 bytes, checksum fixed.
+extern "C" std::uint32_t H5_checksum_metadata(const void* data,
+                                              std::size_t len,
+                                              std::uint32_t initval);
+
+TEST(RunFileDatasets, AVersionTwoHeaderWithItsChecksumFixedIsChecked) {
+    const casmap::test::TempDir dir("run_dataset_v2");
+    int status = 0;
+    const std::string out = test::RunPython(dir.Path(), R"PY(
+import h5py, numpy as np
+with h5py.File(")PY" + (dir / "v2.h5").string() + R"PY(", "w", libver="latest") as f:
+    dcpl = h5py.h5p.create(h5py.h5p.DATASET_CREATE)
+    dcpl.set_layout(h5py.h5d.COMPACT)
+    space = h5py.h5s.create_simple((4, 5))
+    h5py.h5d.create(f.id, b"compact", h5py.h5t.NATIVE_DOUBLE, space, dcpl=dcpl).write(
+        h5py.h5s.ALL, h5py.h5s.ALL, np.arange(20.0).reshape(4, 5))
+    print(h5py.h5o.get_info(f["compact"].id).addr)
+)PY",
+                                            &status);
+    ASSERT_EQ(status, 0) << out;
+    const std::size_t header = std::stoul(out);
+    std::string bytes = ReadBytes(dir / "v2.h5");
+    EXPECT_EQ(CheckDataset(bytes, header), std::nullopt);
+    // "OHDR", version 2, flags; times (flag 0x20), phase change values (0x10); the first
+    // chunk's size in 1 << (flags & 3) bytes; messages of type 1, size 2, flags 1 (creation
+    // order 2 more with flag 0x04); the chunk's checksum after it.
+    ASSERT_EQ(bytes.substr(header, 4), "OHDR");
+    const auto flags = static_cast<unsigned char>(bytes.at(header + 5));
+    std::size_t pos = header + 6 + ((flags & 0x20U) != 0 ? 16 : 0) + ((flags & 0x10U) != 0 ? 4 : 0);
+    const std::size_t size_bytes = std::size_t{1} << (flags & 0x03U);
+    const std::size_t chunk = Le(bytes, pos, size_bytes);
+    pos += size_bytes;
+    const std::size_t end = pos + chunk;
+    const std::size_t message_header = (flags & 0x04U) != 0 ? 6 : 4;
+    std::size_t layout = 0;
+    for (std::size_t at = pos; at + message_header <= end;
+         at += message_header + Le(bytes, at + 1, 2)) {
+        if (bytes.at(at) == kLayout) {
+            layout = at;
+        }
+    }
+    ASSERT_NE(layout, 0U);
+    const std::size_t data = layout + message_header;
+    ASSERT_EQ(bytes.at(data + 1), 0) << "not compact";  // version, class, 2-byte size
+    PutLe(bytes, data + 2, 2, 4096);
+    PutLe(bytes, end, 4, H5_checksum_metadata(bytes.data() + header, end - header, 0));
+    const std::size_t message_size = Le(bytes, layout + 1, 2);
+    EXPECT_EQ(CheckDataset(bytes, header),
+              "layout message at byte " + std::to_string(layout) +
+                  ": its compact data of 4096 bytes does not fit the " +
+                  std::to_string(message_size - 4) + " bytes after its size");
+}
+
 }  // namespace
 }  // namespace casmap::io
