@@ -37,7 +37,7 @@ struct RecordStats {
     std::size_t scans = 0;
     drivers::DriverCounters counters;
     int connect_attempts = 0;
-    double scans_per_second = 0.0;  ///< (scans - 1) / (last - first arrival); 0 if < 2 scans
+    double scans_per_second = 0.0;  ///< (scans - 1) / (last - first stamp); 0 if < 2 scans
 };
 
 /// Validates `options`, records, calls `report` (if set) once recording ended, then writes the run
