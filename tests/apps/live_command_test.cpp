@@ -54,9 +54,12 @@ io::RunData BlockRun(int count) {
     io::RunData run;
     run.format = core::Lms200Format{};
     std::vector<core::TimedPose> poses;
-    // Poses from 0.5 s before the first scan to 0.5 s after the last.
-    for (int i = -500; i <= count * 1000 / 75 + 500; ++i) {
-        const double t = i * 0.001;
+    // Poses from 0.5 s before the first scan to 0.5 s after the last, at 200 Hz (the motion is
+    // linear, so interpolating them is exact): serve writes its whole pose file once the first
+    // sweep is out, a loaded machine formats a long one slowly, and live drops a scan that
+    // waits more than 0.5 s for its poses.
+    for (int i = -100; i <= count * 200 / 75 + 100; ++i) {
+        const double t = i * 0.005;
         poses.push_back(
             {t, core::PoseFromXyzRpy({0.9 + 0.25 * t, 0.0, 0.5}, {0.0, 40 * kDeg, 0.0})});
     }
