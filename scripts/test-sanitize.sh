@@ -22,7 +22,13 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 cmake --build build-asan -j "$(nproc)"
 
 # Leak checking stays on; UBSan findings abort the test (they only print by default).
+# scripts/lsan-suppressions.txt, as for the fuzz targets: HDF5 1.10.8 leaks a block when it
+# fails to load a corrupt object header (RunFileDatasets.TheFuzzersChunkAndBlockInputsAre...:
+# 424 bytes from H5Oget_info on a zero-length header block). Only allocations made inside
+# libhdf5 and libassimp are suppressed; casmap closes every HDF5 identifier (io/hdf5_util.hpp),
+# and HDF5 frees any still open at exit, so a missed close would not show as a leak anyway.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan-suppressions.txt}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
 ctest --test-dir build-asan --output-on-failure --timeout 600 --repeat until-pass:2 -LE '^mpi$' \
     -E "${SANITIZE_EXCLUDE:-^(python|dataset_python_example)$|^(ServeRecord|ServeRecordCommand|LiveCommand|HostStall)\\.}" \
