@@ -50,6 +50,11 @@ struct Superblock {
 /// offsets and lengths are not 2, 4 or 8.
 [[nodiscard]] std::optional<Superblock> ReadSuperblock(std::uint64_t file_size, const ReadAt& read);
 
+/// What a header check reports when ReadSuperblock finds none.
+inline constexpr const char* kNoSuperblockProblem =
+    "no HDF5 superblock with sizes of offsets and lengths of 2, 4 or 8 at byte 0, so its object "
+    "headers cannot be checked";
+
 struct HeaderFile {
     Superblock sb;
     std::uint64_t size = 0;

@@ -114,9 +114,7 @@ std::optional<std::string> FindCorruptAttributeMessages(std::uint64_t address,
                                                         const ReadAt& read) {
     const std::optional<Superblock> sb = ReadSuperblock(file_size, read);
     if (!sb) {
-        return std::string(
-            "no HDF5 superblock with sizes of offsets and lengths of 2, 4 or 8 at byte 0, so "
-            "its object headers cannot be checked");
+        return std::string(kNoSuperblockProblem);
     }
     const HeaderFile file{*sb, file_size, &read};
     return WalkHeader(file, address, true,
